@@ -1,0 +1,1 @@
+"""agent.protocol: the project's one definition of the rcssserver3d wire language."""

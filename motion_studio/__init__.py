@@ -1,0 +1,1 @@
+"""motion_studio: the user's workbench (edit, view, bench, tune, match); nothing imports it."""

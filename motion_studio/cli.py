@@ -1,0 +1,31 @@
+"""The ``motion-studio`` command: one thin subcommand per job, each in its own module under commands/."""
+
+from __future__ import annotations
+
+import importlib
+import logging
+
+import typer
+
+app = typer.Typer(help="Motion authoring and skill-tuning toolkit for the simulated RoboCup 3D Nao.",
+                  no_args_is_help=True, add_completion=False)
+bench_app = typer.Typer(help="Benchmarks: print figures as JSON/tables, never pass/fail.", no_args_is_help=True)
+app.add_typer(bench_app, name="bench")
+
+# Each module registers its subcommands on `app` / `bench_app` when imported.
+COMMAND_MODULES = (
+    "motion_studio.commands.view",
+    "motion_studio.commands.demo",
+    "motion_studio.commands.bench_kinematics",
+)
+
+
+def _register_commands() -> None:
+    for name in COMMAND_MODULES:
+        importlib.import_module(name)
+
+
+def main() -> None:
+    logging.basicConfig(level=logging.INFO, format="%(levelname)s %(name)s: %(message)s")
+    _register_commands()
+    app()

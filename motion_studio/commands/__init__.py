@@ -1,0 +1,1 @@
+"""Subcommands of motion-studio, one module per job."""

@@ -1,0 +1,1 @@
+"""sim: the MuJoCo SimSpark world: physics, perceptors, effectors, referee, hosting, monitor output."""
