@@ -66,7 +66,7 @@ def _body_element(parent: ET.Element, body: BodySpec, pos: tuple[float, float, f
 
 
 def robot_mjcf_xml(robot_type: int = 0, free: bool = True,
-                   torso_pos_m: tuple[float, float, float] = (0.0, 0.0, STANDING_TORSO_HEIGHT_M),
+                   torso_pos_m: tuple[float, float, float] | None = None,
                    floor: bool = False) -> str:
     """The MJCF text of one Nao (names: bodies and sites as the spec, hinges by wire name, free joint ``root``).
 
@@ -76,10 +76,12 @@ def robot_mjcf_xml(robot_type: int = 0, free: bool = True,
     Args:
         robot_type: 0-4.
         free: give the torso a free joint (False: torso welded to the world, e.g. for previews).
-        torso_pos_m: torso centre in the world at zero pose.
+        torso_pos_m: torso centre in the world at zero pose; None = standing on z = 0 (0, 0, 0.385 for type 0).
         floor: add a ground plane at z = 0.
     """
     spec = robot_spec(robot_type)
+    if torso_pos_m is None:
+        torso_pos_m = (0.0, 0.0, -spec.sole_z_m)
     root = ET.Element("mujoco", model=f"nao_type{robot_type}")
     ET.SubElement(root, "compiler", angle="radian", inertiafromgeom="false", autolimits="true")
     worldbody = ET.SubElement(root, "worldbody")
