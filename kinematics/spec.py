@@ -130,7 +130,7 @@ TYPE_PARAMETERS: dict[int, TypeParameters] = {
 # Type 4 foot/toe split (REFERENCE §2.5): same total mass and span as the type-0 foot.
 TOE_FOOT_SIZE_M = (0.08, 0.124482344, 0.02)
 TOE_FOOT_MASS_KG = 0.177801465
-TOE_FOOT_OFFSET_Y_M = 0.012241172
+TOE_FOOT_OFFSET_Y_M = 0.012241172  # foot centre rel. ankle (type 0: 0.03)
 TOE_SIZE_M = (0.08, 0.035517656, 0.01)
 TOE_MASS_KG = 0.022198535
 TOE_OFFSET_IN_FOOT_M = (0.0, 0.08, -0.005)
@@ -230,7 +230,7 @@ def _leg(side: str, p: TypeParameters) -> tuple[list[BodySpec], list[JointSpec]]
     has_toes = p.toe_length_m > 0.0
     foot_shape = _box(*TOE_FOOT_SIZE_M) if has_toes else _box(0.08, 0.16, 0.02)
     foot_mass = TOE_FOOT_MASS_KG if has_toes else 0.200
-    foot_offset = (0.0, 0.03 + (TOE_FOOT_OFFSET_Y_M if has_toes else 0.0), -0.04)
+    foot_offset = (0.0, TOE_FOOT_OFFSET_Y_M if has_toes else 0.03, -0.04)
     bodies = [
         BodySpec(f"{side}hip1", "torso", (s * p.hip1_rel_torso_x, -0.01, p.hip1_rel_torso_z), _sphere(0.01),
                  0.090, False),
