@@ -33,6 +33,12 @@ DEFAULT_WEIGHTS: dict[str, float] = {"lfoot": 100.0, "rfoot": 100.0, "torso": 10
                                      "lhand": 1.0, "rhand": 1.0}
 
 
+HARD_TASKS = frozenset({"lfoot", "rfoot"})
+# Per-iteration step bound: joint speed limit x STEP_DT_S (0.3 rad). Undamped Gauss-Newton steps oscillate
+# across the straight-knee singularity; bounded steps walk out of it.
+STEP_DT_S = 0.05
+
+
 @dataclass(frozen=True)
 class PoseTarget:
     """Desired pose of a task frame in the ground frame; None leaves that part free.
@@ -95,6 +101,8 @@ class WholeBodyIK:
             self.robot = placo.RobotWrapper(str(mjcf_path(robot_type, True)),
                                             placo.Flags.mjcf | placo.Flags.ignore_collisions)
         self.joint_names = self.spec.joint_names
+        for joint in self.spec.joints:  # the MJCF carries no speed limits; they bound each IK step
+            self.robot.set_velocity_limit(joint.perceptor, joint.max_speed_rad_s)
         self.weights = {**DEFAULT_WEIGHTS, **(weights or {})}
         self._solvers: dict[tuple[str, ...], tuple[placo.KinematicsSolver, dict[str, object]]] = {}
         self.reset()
@@ -133,7 +141,8 @@ class WholeBodyIK:
         if task_names not in self._solvers:
             solver = placo.KinematicsSolver(self.robot)
             solver.enable_joint_limits(True)
-            solver.enable_velocity_limits(False)
+            solver.enable_velocity_limits(True)
+            solver.dt = STEP_DT_S
             tasks: dict[str, object] = {}
             for name in task_names:
                 weight = self.weights[name.partition(":")[0]]
@@ -152,7 +161,10 @@ class WholeBodyIK:
                         task.configure(name, "soft", weight)
                     else:
                         task = solver.add_frame_task(frame, np.eye(4))
-                        task.configure(name, "soft", weight, weight)
+                        # Feet are contacts: hard equality constraints keep the other tasks from dragging
+                        # them (soft feet let a far hand target pull the whole robot into a local minimum).
+                        priority = "hard" if kind in HARD_TASKS else "soft"
+                        task.configure(name, priority, weight, weight)
                 tasks[name] = task
             solver.add_regularization_task(1e-6)
             self._solvers[task_names] = (solver, tasks)
@@ -196,7 +208,15 @@ class WholeBodyIK:
         previous_worst = math.inf
         stalled = 0
         for iterations in range(1, max_iterations + 1):
-            solver.solve(True)
+            try:
+                solver.solve(True)
+            except RuntimeError as error:  # PlaCo reports an infeasible QP (hard feet vs joint limits)
+                residuals = self._residuals(goals)
+                name = max((n for n in goals if n.split(":")[0] in HARD_TASKS),
+                           key=lambda n: residuals[n][0], default=next(iter(goals)))
+                raise IKError(f"IK infeasible at iteration {iterations}: hard task {name!r} (residual "
+                              f"{residuals[name][0]:.4g} m) cannot be met within the joint limits ({error})",
+                              task=name, residual=residuals[name][0]) from error
             self.robot.update_kinematics()
             residuals = self._residuals(goals)
             worst = max(p / position_tol_m + r / rotation_tol_rad for p, r in residuals.values())
