@@ -1,0 +1,19 @@
+"""``motion-studio demo``: the README's main job."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
+from motion_studio.cli import app
+
+
+@app.command()
+def demo(out: Annotated[Path, typer.Option(help="output folder")] = Path("out")) -> None:
+    """Run the most complete job the toolkit does today and write its results to OUT."""
+    from motion_studio.demo import run_demo
+
+    for line in run_demo(out):
+        typer.echo(line)
