@@ -90,3 +90,15 @@ def add_ground(vis: meshcat.Visualizer, size_m: float = 1.0) -> None:
     """A thin grey slab under z = 0 so the standing height reads at a glance."""
     vis["ground"].set_object(geometry.Box([size_m, size_m, 0.002]), _material(0x70A070, 0.6))
     vis["ground"].set_transform(transformations.translation_matrix([0, 0, -0.001]))
+
+
+def frame_camera(vis: meshcat.Visualizer, position_m: tuple[float, float, float] = (0.9, 0.9, 0.55),
+                 target_m: tuple[float, float, float] = (0.0, 0.0, 0.25)) -> None:
+    """Put meshcat's camera near the robot (its default sits metres away, where a Nao is a few pixels).
+
+    Meshcat's camera node is y-up; ``/Cameras/default`` is translated to the target and the camera object
+    offset from it, converted from our z-up frame.
+    """
+    vis["/Cameras/default"].set_transform(transformations.translation_matrix(list(target_m)))
+    dx, dy, dz = (p - t for p, t in zip(position_m, target_m))
+    vis["/Cameras/default/rotated/<object>"].set_property("position", [dx, dz, -dy])

@@ -11,7 +11,7 @@ import numpy as np
 
 from kinematics.fk import NaoKinematics
 from kinematics.ik import PoseTarget, WholeBodyIK
-from kinematics.meshcat_view import NaoPosePainter, add_ground, add_nao
+from kinematics.meshcat_view import NaoPosePainter, add_ground, add_nao, frame_camera
 from kinematics.mjcf import write_robot_mjcf
 from kinematics.spec import ROBOT_TYPES, robot_spec
 from kinematics.urdf import write_robot_urdf
@@ -49,6 +49,7 @@ def write_preview(path: Path, angles_rad: dict[str, float]) -> Path:
     """Standalone meshcat HTML of the zero pose (ghost) and the IK crouch side by side."""
     vis = meshcat.Visualizer()
     add_ground(vis, 1.5)
+    frame_camera(vis)
     painter = NaoPosePainter(0)
     add_nao(vis, "zero_pose", 0, opacity=0.35)
     zero = painter.body_poses()

@@ -6,12 +6,13 @@ from pathlib import Path
 
 import meshcat
 
-from kinematics.meshcat_view import NaoPosePainter, add_ground, add_nao
+from kinematics.meshcat_view import NaoPosePainter, add_ground, add_nao, frame_camera
 from motion_studio.pose_input import parse_joint_assignments, read_pose_file
 
 
 def pose_scene(vis: meshcat.Visualizer, robot_type: int, angles_rad: dict[str, float]) -> None:
     add_ground(vis)
+    frame_camera(vis)
     add_nao(vis, "nao", robot_type)
     NaoPosePainter(robot_type).paint(vis, "nao", angles_rad)
 
