@@ -1,0 +1,262 @@
+"""The TCP server over real loopback sockets, with a stub engine (sync, real time, latency, bad clients)."""
+
+from __future__ import annotations
+
+import re
+import selectors
+import socket
+import struct
+import time
+
+import pytest
+
+from agent.protocol.framing import FrameDecoder, frame
+from sim.tcp_server import SimServer
+
+
+class StubEngine:
+    """Counts cycles; each sense message says the cycle and the last action received before the step."""
+
+    def __init__(self) -> None:
+        self.next_id = 0
+        self.connected: set[int] = set()
+        self.last_action: dict[int, bytes] = {}
+        self.cycle = 0
+        self.received: list[tuple[int, bytes]] = []
+
+    def connect(self) -> int:
+        self.next_id += 1
+        self.connected.add(self.next_id)
+        return self.next_id
+
+    def disconnect(self, agent_id: int) -> None:
+        self.connected.discard(agent_id)
+
+    def receive(self, agent_id: int, payload: bytes) -> None:
+        self.received.append((agent_id, payload))
+        self.last_action[agent_id] = payload
+
+    def step(self) -> dict[int, bytes]:
+        self.cycle += 1
+        return {i: b"(time (now %.2f))(cyc %d)(last %s)" % (self.cycle * 0.02, self.cycle,
+                                                            self.last_action.get(i, b"none"))
+                for i in self.connected}
+
+
+class Client:
+    """A blocking test client on loopback."""
+
+    def __init__(self, port: int) -> None:
+        self.sock = socket.create_connection(("127.0.0.1", port), timeout=5.0)
+        self.decoder = FrameDecoder()
+        self.queue: list[bytes] = []
+
+    def send(self, payload: bytes) -> None:
+        self.sock.sendall(frame(payload))
+
+    def recv(self) -> bytes:
+        while not self.queue:
+            data = self.sock.recv(65536)
+            if not data:
+                raise ConnectionError("server closed")
+            self.queue.extend(self.decoder.feed(data))
+        return self.queue.pop(0)
+
+    def close(self) -> None:
+        self.sock.close()
+
+
+def cycle_of(message: bytes) -> int:
+    match = re.search(rb"\(cyc (\d+)\)", message)
+    assert match, message
+    return int(match.group(1))
+
+
+@pytest.fixture
+def server_factory():
+    servers: list[SimServer] = []
+
+    def make(**kwargs) -> SimServer:
+        engine = kwargs.pop("engine", None) or StubEngine()
+        server = SimServer(engine, agent_port=0, **kwargs).start()
+        servers.append(server)
+        return server
+
+    yield make
+    for server in servers:
+        server.stop()
+
+
+def test_binds_loopback_by_default(server_factory) -> None:
+    server = server_factory(sync=True)
+    assert server.host == "127.0.0.1" and server.agent_port
+
+
+def test_sync_mode_waits_for_syn_and_latency_is_two_messages(server_factory) -> None:
+    server = server_factory(sync=True, real_time=False)
+    client = Client(server.agent_port)
+    cycles = []
+    for _ in range(30):
+        message = client.recv()
+        k = cycle_of(message)
+        cycles.append(k)
+        client.send(b"(act %d)(syn)" % k)
+    assert cycles == list(range(cycles[0], cycles[0] + 30))  # one message per cycle, none skipped
+    # The 4 grace cycles left a few messages in flight; read them without answering, then the server
+    # must stop: it only steps after our (syn).
+    client.sock.settimeout(0.3)
+    message = b""
+    with pytest.raises(socket.timeout):
+        for _ in range(10):
+            message = client.recv()
+    assert message
+    stepped = server.stats.cycles
+    time.sleep(0.1)
+    assert server.stats.cycles == stepped
+    # An action sent in reply to message k shows first in message k + 2 (REFERENCE §3.9).
+    k = cycle_of(message)
+    client.sock.settimeout(5.0)
+    client.send(b"(act %d)(syn)" % k)
+    nxt = client.recv()
+    assert b"(last (act %d)" % k not in nxt
+    client.send(b"(syn)")
+    after = client.recv()
+    assert cycle_of(after) == k + 2 and b"(last (act %d)(syn))" % k in after
+    client.close()
+
+
+def test_one_client_driving_two_agents_in_any_order(server_factory) -> None:
+    server = server_factory(sync=True, real_time=False)
+    first, second = Client(server.agent_port), Client(server.agent_port)
+    selector = selectors.DefaultSelector()
+    for client in (first, second):
+        client.sock.setblocking(False)
+        selector.register(client.sock, selectors.EVENT_READ, client)
+    seen = {id(first): [], id(second): []}
+    deadline = time.monotonic() + 10.0
+    while min(len(v) for v in seen.values()) < 40 and time.monotonic() < deadline:
+        for key, _ in selector.select(1.0):
+            client = key.data
+            try:
+                data = client.sock.recv(65536)
+            except BlockingIOError:
+                continue
+            for payload in client.decoder.feed(data):
+                seen[id(client)].append(cycle_of(payload))
+                client.sock.setblocking(True)
+                client.send(b"(syn)")
+                client.sock.setblocking(False)
+    assert min(len(v) for v in seen.values()) >= 40
+    for cycles in seen.values():
+        assert cycles == list(range(cycles[0], cycles[0] + len(cycles)))
+
+
+def test_real_time_mode_never_waits(server_factory) -> None:
+    server = server_factory(sync=False, real_time=True)
+    client = Client(server.agent_port)
+    start = time.monotonic()
+    first = cycle_of(client.recv())
+    while time.monotonic() - start < 0.5:
+        last = cycle_of(client.recv())  # never answering
+    rate = (last - first) / (time.monotonic() - start)
+    assert 35 <= rate <= 60
+    client.close()
+
+
+def test_sync_with_real_time_is_capped_at_50_hz(server_factory) -> None:
+    server = server_factory(sync=True, real_time=True)
+    client = Client(server.agent_port)
+    start = time.monotonic()
+    count = 0
+    while time.monotonic() - start < 0.5:
+        client.recv()
+        client.send(b"(syn)")
+        count += 1
+    assert 15 <= count <= 30
+
+
+@pytest.mark.parametrize("bad", [
+    struct.pack(">I", 0xFFFFFFF0) + b"(syn)",       # "negative" / huge prefix
+    struct.pack(">I", 10_000_000),                    # above the frame cap
+    b"GET / HTTP/1.1\r\nHost: x\r\n\r\n",             # garbage read as a prefix
+])
+def test_bad_prefix_drops_only_that_client(server_factory, bad: bytes) -> None:
+    server = server_factory(sync=True, real_time=False)
+    good = Client(server.agent_port)
+    bad_client = Client(server.agent_port)
+    good.recv()
+    good.send(b"(syn)")
+    bad_client.sock.sendall(bad)
+    bad_client.sock.settimeout(3.0)
+    with pytest.raises((ConnectionError, OSError)):
+        for _ in range(20):
+            bad_client.recv()
+    for _ in range(20):
+        good.recv()
+        good.send(b"(syn)")
+    assert server.stats.clients_dropped >= 1
+
+
+def test_client_vanishing_mid_frame_and_bad_payloads(server_factory) -> None:
+    engine = StubEngine()
+    server = server_factory(sync=True, real_time=False, engine=engine)
+    good = Client(server.agent_port)
+    ghost = Client(server.agent_port)
+    ghost.sock.sendall(struct.pack(">I", 100) + b"(he1 0.5")
+    ghost.close()
+    noisy = Client(server.agent_port)
+    for payload in (b"((((", b"))(", b"(he1 nan)(lle3 inf)(syn)", b"(unknown 1 2)(syn)", b"\x00\xff\x80",
+                    b"", b"(syn)"):
+        noisy.send(payload)
+    for _ in range(20):
+        good.recv()
+        good.send(b"(syn)")
+        try:
+            noisy.sock.setblocking(False)
+            noisy.sock.recv(65536)
+        except BlockingIOError:
+            pass
+        noisy.send(b"(syn)")
+        noisy.sock.setblocking(True)
+    assert server.agent_count == 2
+    assert any(payload == b"(he1 nan)(lle3 inf)(syn)" for _, payload in engine.received)
+
+
+def test_engine_exception_does_not_stop_the_server(server_factory) -> None:
+    class Faulty(StubEngine):
+        def receive(self, agent_id: int, payload: bytes) -> None:
+            if b"boom" in payload:
+                raise RuntimeError("engine bug")
+            super().receive(agent_id, payload)
+
+    server = server_factory(sync=True, engine=Faulty())
+    client = Client(server.agent_port)
+    for _ in range(5):
+        client.recv()
+        client.send(b"(boom)(syn)")
+    assert server.stats.engine_errors >= 1
+
+
+def test_new_agent_counts_as_synced_for_four_cycles(server_factory) -> None:
+    server = server_factory(sync=True, real_time=False)
+    silent = Client(server.agent_port)
+    received = [silent.recv() for _ in range(4)]  # the server steps without our (syn)
+    assert [cycle_of(m) for m in received] == list(range(cycle_of(received[0]), cycle_of(received[0]) + 4))
+    silent.sock.settimeout(0.3)
+    with pytest.raises(socket.timeout):
+        for _ in range(3):
+            silent.recv()
+    cycles = server.stats.cycles
+    time.sleep(0.1)
+    assert server.stats.cycles == cycles  # now it waits for us
+    silent.sock.settimeout(5.0)
+    silent.send(b"(syn)")
+    assert cycle_of(silent.recv()) == cycle_of(received[0]) + 4
+
+
+def test_stop_closes_the_ports(server_factory) -> None:
+    server = server_factory(sync=True)
+    port = server.agent_port
+    server.stop()
+    with pytest.raises(OSError):
+        socket.create_connection(("127.0.0.1", port), timeout=1.0)
