@@ -7,6 +7,7 @@ The torso orientation is given separately (from the agent's inertial estimate), 
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 from dataclasses import dataclass
 
@@ -19,8 +20,7 @@ from kinematics.pinocchio_model import pinocchio_model
 from kinematics.spec import robot_spec
 
 FOOT_BODIES = ("lfoot", "rfoot")
-CONTACT_TOLERANCE_M = 1e-3
-_UP = np.array([0.0, 0.0, 1.0])  # sole corners within this of the lowest one count as touching the ground
+CONTACT_TOLERANCE_M = 1e-3  # sole corners within this of the lowest one count as touching the ground
 
 
 def torso_rotation(pitch_forward_rad: float = 0.0, roll_right_rad: float = 0.0) -> np.ndarray:
@@ -93,6 +93,11 @@ class NaoKinematics:
             SpecError: unknown joint name, wrong array length, or a non-finite angle.
         """
         n = len(self.joint_names)
+        if type(angles_rad) is np.ndarray and angles_rad.shape == (n,) and angles_rad.dtype == np.float64:
+            if not np.isfinite(angles_rad).all():
+                bad = [self.joint_names[i] for i in np.flatnonzero(~np.isfinite(angles_rad))]
+                raise SpecError(f"non-finite joint angle for {', '.join(bad)}", field=bad[0])
+            return angles_rad  # hot path: the agent calls this every vision cycle
         if angles_rad is None:
             return np.zeros(n)
         if isinstance(angles_rad, Mapping):
@@ -152,16 +157,21 @@ class NaoKinematics:
             rotation: torso orientation (3x3) in a gravity-aligned frame; identity = upright.
         """
         q = self.configuration(angles_rad)
-        pin.forwardKinematics(self.model, self.data, q)
-        up = _UP if rotation is None else np.asarray(rotation, dtype=float)[2]
-        camera = pin.updateFramePlacement(self.model, self.data, self._camera_id).translation
-        lowest = np.inf
+        model, data = self.model, self.data
+        pin.forwardKinematics(model, data, q)
+        camera = pin.updateFramePlacement(model, data, self._camera_id).homogeneous
+        lowest = math.inf
+        if rotation is None:  # upright: the up row of each box rotation is its third row
+            for fid, (hx, hy, hz) in zip(self._foot_ids, self._sole_half_sizes):
+                r0, r1, r2, z = pin.updateFramePlacement(model, data, fid).homogeneous[2].tolist()
+                lowest = min(lowest, z - abs(r0) * hx - abs(r1) * hy - r2 * hz)
+            return float(camera[2, 3] - lowest)
+        up = np.asarray(rotation, dtype=float)[2]
         for fid, (hx, hy, hz) in zip(self._foot_ids, self._sole_half_sizes):
-            placement = pin.updateFramePlacement(self.model, self.data, fid)
-            u = up @ placement.rotation
-            z = up @ placement.translation - abs(u[0]) * hx - abs(u[1]) * hy - u[2] * hz
-            lowest = min(lowest, z)
-        return float(up @ camera - lowest)
+            box = pin.updateFramePlacement(model, data, fid).homogeneous
+            r0, r1, r2, z = (up @ box[:3]).tolist()
+            lowest = min(lowest, z - abs(r0) * hx - abs(r1) * hy - r2 * hz)
+        return float(up @ camera[:3, 3] - lowest)
 
     def support_polygon(self, angles_rad: Mapping[str, float] | np.ndarray | None = None,
                         rotation: np.ndarray | None = None) -> np.ndarray:
