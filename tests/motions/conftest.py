@@ -26,3 +26,21 @@ def fixture_text():
         return (FIXTURES / name).read_bytes().decode("utf-8")
 
     return read
+
+
+def assert_same_motion(actual: Motion, expected: Motion, angle_tolerance_rad: float = 1e-12) -> None:
+    """Equal motions, angles within ``angle_tolerance_rad``: degree text in XML files cannot hit every
+    radian float exactly (radians(d) skips some floats), so XML round trips agree to about one ulp."""
+    assert [k.name for k in actual.keyframes] == [k.name for k in expected.keyframes]
+    for got, want in zip(actual.keyframes, expected.keyframes):
+        assert list(got.targets) == list(want.targets), want.name
+        for wire, target in want.targets.items():
+            other = got.targets[wire]
+            assert other.computed == target.computed
+            if target.angle_rad is None:
+                assert other.angle_rad is None
+            else:
+                assert other.angle_rad == pytest.approx(target.angle_rad, rel=0, abs=angle_tolerance_rad)
+    flat = [dataclasses.replace(k, targets={}) for k in actual.keyframes]
+    want_flat = [dataclasses.replace(k, targets={}) for k in expected.keyframes]
+    assert dataclasses.replace(actual, keyframes=flat) == dataclasses.replace(expected, keyframes=want_flat)
