@@ -350,7 +350,9 @@ def dumps_xml(motion: Motion) -> str:
         if names.index(name) != index:
             raise ConversionError(f"phase name {name!r} is used twice", field="name", element=f"phase {name!r}")
     first_phase = motion.first_phase if motion.first_phase is not None else names[0]
-    source = motion.source or MotionSource(xml_declaration=CANONICAL_DECLARATION)
+    # Layout details only count when they came from an XML file; anything else gets the canonical ones.
+    source = motion.source if motion.source is not None and motion.source_format == XML else MotionSource(
+        xml_declaration=CANONICAL_DECLARATION)
     lines: list[str] = [source.xml_declaration] if source.xml_declaration else []
     lines += [_comment_line(c) for c in motion.header_comments]
     lines.append(f"<robot{_attributes(list(source.root_attributes))}>")

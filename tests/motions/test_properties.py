@@ -92,8 +92,8 @@ def test_pose_at_stays_between_neighbouring_keyframes(motion, fraction):
 
 
 def test_tiny_webots_value_round_trips_exactly():
-    motion = Motion("m", [Keyframe("a", 0.0, {"hj1": JointTarget(5e-324)}), Keyframe("b", 0.1, {"hj1": JointTarget(-1e-300)})],
-                    source_format="webots", joint_order=("hj1",))
+    keyframes = [Keyframe("a", 0.0, {"hj1": JointTarget(5e-324)}), Keyframe("b", 0.1, {"hj1": JointTarget(-1e-300)})]
+    motion = Motion("m", keyframes, source_format="webots", joint_order=("hj1",))
     assert loads_webots(dumps_webots(motion), name="m") == motion
     assert "e" not in dumps_webots(motion).split("\n", 1)[1]
 

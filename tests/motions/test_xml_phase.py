@@ -223,3 +223,12 @@ def test_writer_rejects_fractional_milliseconds():
     with pytest.raises(MotionFormatError) as info:
         dumps_xml(motion)
     assert info.value.field == "duration"
+
+
+def test_motion_read_from_webots_is_written_with_the_canonical_xml_layout():
+    from motions import loads_webots
+
+    motion = loads_webots("#WEBOTS_MOTION,V1.0,HeadYaw\r\n00:00:100,a,0.5\r\n")
+    motion.keyframes[0].next = None
+    text = dumps_xml(dataclasses.replace(motion, first_phase="a"))
+    assert text.startswith('<?xml version="1.0" encoding="UTF-8"?>\n<robot>\n') and "\r" not in text
