@@ -171,8 +171,9 @@ class Motion:
     # ----------------------------------------------------------------------------------------- time axis
     @property
     def duration_s(self) -> float:
-        """Total time of the keyframes in list order (for Webots: the last pose's time)."""
-        return math.fsum(k.duration_s for k in self.keyframes)
+        """Total time of the keyframes in list order (for Webots: the last pose's time), seconds."""
+        times = self.keyframe_times_s()
+        return times[-1] if times else 0.0
 
     def keyframe_times_s(self) -> list[float]:
         """Absolute end time of each keyframe in list order, seconds (Webots: the pose times)."""
