@@ -214,9 +214,11 @@ class Motion:
         names = self.joints()
         rows = self._resolved_rows(names, start_pose, hold)
         times = self.keyframe_times_s()
-        index = bisect.bisect_left(times, t_s)
-        if index >= len(times):
+        # As Webots' motion.c: from the last pose's time on, its values; at an inner pose's exact time, the
+        # interval that ends there (so a '*' before it still leaves the joint uncommanded).
+        if t_s >= times[-1]:
             return dict(rows[-1])
+        index = bisect.bisect_left(times, t_s)
         end_row = rows[index]
         if index == 0:
             if start_pose is None:
@@ -231,7 +233,7 @@ class Motion:
         pose: dict[str, float | None] = {}
         for name in names:
             a, b = start_row[name], end_row[name]
-            pose[name] = None if a is None or b is None else a + fraction * (b - a)
+            pose[name] = None if a is None or b is None else (b if fraction == 1.0 else a + fraction * (b - a))
         return pose
 
     def _resolved_rows(self, names: list[str], start_pose: Mapping[str, float] | None,
