@@ -1,0 +1,240 @@
+"""``format_sense``: the exact bytes rcssserver3d 0.7.3 sends for a :class:`Sense` (used by our server).
+
+Follows SimSpark's ``SexpParser``: ``(name`` + space + items joined by one space + ``)``, predicates
+concatenated with no separator, so an empty vision frame is ``(See )``; floats ``%.2f`` (with ``-0.00``),
+ints as ints (REFERENCE §1, §3.1). A parsed Sense carries its wire order and is written back byte for byte;
+a Sense built with ``order=()`` is written in the server's own order (REFERENCE §3.3).
+"""
+
+from __future__ import annotations
+
+import re
+
+from agent.protocol.errors import ProtocolError
+from agent.protocol.numbers import format_fixed2
+from agent.protocol.perceptors import (
+    SEE_LINE,
+    SEE_MYPOS,
+    SEE_OBJECT,
+    SEE_PLAYER,
+    AgentState,
+    ForceResistance,
+    GameState,
+    Hear,
+    Polar,
+    See,
+    Sense,
+)
+
+#: Where each foot sensor goes in the server's order: before the joint that follows its body in the scene
+#: graph (REFERENCE §3.3: ``rlj5, FRP rf, rlj6``). The toe sensors of type 4 are placed by analogy
+#: (unverified: no type-4 sample yet).
+_FRP_BEFORE_JOINT = {"rf": "rlj6", "lf": "llj6", "rf1": "rlj7", "lf1": "llj7"}
+#: Vision comes right after the head joints (the camera sits on the head).
+_SEE_AFTER_JOINT = "hj2"
+
+
+def _server_layout(sense: Sense) -> tuple[list[str], list[ForceResistance]]:
+    """The predicate order rcssserver3d uses for ``sense``'s content (REFERENCE §3.3), and the FRPs in it.
+
+    ``time``, ``GS``, the hears, ``GYR``, ``ACC``, then the joints in ``sense.joints`` order with ``See``
+    after ``hj2`` and each FRP before the joint that follows its foot; ``AgentState`` last. Anything without
+    its anchor (a See without ``hj2``, an FRP of another name) follows the joints.
+    """
+    order: list[str] = []
+    if sense.time is not None:
+        order.append("time")
+    if sense.game_state is not None:
+        order.append("GS")
+    order += ["hear"] * len(sense.hears)
+    if sense.gyro is not None:
+        order.append("GYR")
+    if sense.acc is not None:
+        order.append("ACC")
+    frp_at_joint = {_FRP_BEFORE_JOINT.get(name): frp for name, frp in sense.frp.items()}
+    frps: list[ForceResistance] = []
+    see_pending = sense.see is not None
+    for joint in sense.joints:
+        frp = frp_at_joint.pop(joint, None)
+        if frp is not None:
+            order.append("FRP")
+            frps.append(frp)
+        order.append("HJ")
+        if see_pending and joint == _SEE_AFTER_JOINT:
+            order.append("See")
+            see_pending = False
+    leftover = [frp for frp in sense.frp.values() if frp not in frps]
+    order += ["FRP"] * len(leftover)
+    frps += leftover
+    if see_pending:
+        order.append("See")
+    if sense.agent_state is not None:
+        order.append("AgentState")
+    return order, frps
+
+
+_ATOM = r"[!-'*-~]+"
+_ATOM_LIST = re.compile(rf"{_ATOM}(?: {_ATOM})*")
+
+
+def format_sense(sense: Sense) -> bytes:
+    """The exact bytes rcssserver3d would send for ``sense`` (frame payload, no length prefix).
+
+    Uses ``sense.order`` when set (so ``format_sense(parse_sense(m)) == m`` for server messages), else the
+    server's own order. Floats are written ``%.2f``; expressions counted in ``sense.unknown`` are not
+    reproduced.
+
+    Raises:
+        ProtocolError: ``order`` does not match the content (e.g. three ``HJ`` for two joints), or a name
+            or message is not a valid atom (offset = bytes written before the problem).
+    """
+    if sense.order:
+        order = sense.order
+        frps = list(sense.frp.values())
+        _check_counts(sense, order)
+    else:
+        order, frps = _server_layout(sense)  # type: ignore[assignment]
+    f2 = format_fixed2
+    out: list[str] = []
+    atoms: list[str] = []  # names and messages, checked at once at the end
+    joints = iter(sense.joints.items())
+    frp_iter = iter(frps)
+    hears = iter(sense.hears)
+    for kind in order:
+        if kind == "HJ":
+            name, angle_deg = next(joints)
+            out.append(f"(HJ (n {name}) (ax {f2(angle_deg)}))")
+            atoms.append(name)
+        elif kind == "FRP":
+            frp = next(frp_iter)
+            (cx, cy, cz), (fx, fy, fz) = frp.contact_m, frp.force_n
+            out.append(
+                f"(FRP (n {frp.name}) (c {f2(cx)} {f2(cy)} {f2(cz)}) (f {f2(fx)} {f2(fy)} {f2(fz)}))"
+            )
+            atoms.append(frp.name)
+        elif kind == "See":
+            out.append(_format_see(sense.see, atoms, out))  # type: ignore[arg-type]
+        elif kind == "hear":
+            out.append(_format_hear(next(hears), atoms))
+        elif kind == "time":
+            out.append(f"(time (now {f2(sense.time.now_s)}))")  # type: ignore[union-attr]
+        elif kind == "GS":
+            out.append(_format_game_state(sense.game_state, atoms))  # type: ignore[arg-type]
+        elif kind == "GYR":
+            x, y, z = sense.gyro.rate_deg_s  # type: ignore[union-attr]
+            out.append(f"(GYR (n {sense.gyro.name}) (rt {f2(x)} {f2(y)} {f2(z)}))")  # type: ignore[union-attr]
+            atoms.append(sense.gyro.name)  # type: ignore[union-attr]
+        elif kind == "ACC":
+            x, y, z = sense.acc.acc_m_s2  # type: ignore[union-attr]
+            out.append(f"(ACC (n {sense.acc.name}) (a {f2(x)} {f2(y)} {f2(z)}))")  # type: ignore[union-attr]
+            atoms.append(sense.acc.name)  # type: ignore[union-attr]
+        else:
+            out.append(_format_agent_state(sense.agent_state))  # type: ignore[arg-type]
+    if atoms and _ATOM_LIST.fullmatch(" ".join(atoms)) is None:
+        bad = next(atom for atom in atoms if _ATOM_LIST.fullmatch(atom) is None)
+        written = "".join(out)
+        offset = written.find(bad) if bad else len(written)
+        raise ProtocolError.at(f"{bad!r} is not a valid atom (empty, or holds a space or parenthesis)",
+                               written, max(offset, 0))
+    return "".join(out).encode("ascii")
+
+
+def _check_counts(sense: Sense, order: tuple[str, ...]) -> None:
+    expected = {
+        "HJ": len(sense.joints),
+        "FRP": len(sense.frp),
+        "hear": len(sense.hears),
+        "time": sense.time is not None,
+        "GS": sense.game_state is not None,
+        "GYR": sense.gyro is not None,
+        "ACC": sense.acc is not None,
+        "See": sense.see is not None,
+        "AgentState": sense.agent_state is not None,
+    }
+    for name, count in expected.items():
+        if order.count(name) != count:
+            raise ProtocolError(
+                f"Sense.order lists {order.count(name)} {name} but the Sense holds {int(count)}", 0, b""
+            )
+    if len(order) != sum(expected.values()):
+        unknown = sorted(set(order) - set(expected))
+        raise ProtocolError(f"Sense.order holds unknown predicate names {unknown}", 0, b"")
+
+
+def _polar_text(polar: Polar) -> str:
+    d, t, p = polar
+    return f"(pol {format_fixed2(d)} {format_fixed2(t)} {format_fixed2(p)})"
+
+
+def _format_see(see: See, atoms: list[str], out: list[str]) -> str:
+    f2 = format_fixed2
+    layout = see.order or (
+        SEE_OBJECT * len(see.objects)
+        + SEE_PLAYER * len(see.players)
+        + SEE_MYPOS * (see.my_pos_m is not None)
+        + SEE_LINE * len(see.lines)
+    )
+    counts = (len(see.objects), len(see.players), int(see.my_pos_m is not None), len(see.lines))
+    if tuple(layout.count(kind) for kind in (SEE_OBJECT, SEE_PLAYER, SEE_MYPOS, SEE_LINE)) != counts or len(
+        layout
+    ) != sum(counts):
+        written = "".join(out)
+        raise ProtocolError.at(f"See.order {layout!r} does not match the See's content", written, len(written))
+    objects, players, lines = iter(see.objects), iter(see.players), iter(see.lines)
+    items: list[str] = []
+    for kind in layout:
+        if kind == SEE_LINE:
+            begin, end = next(lines)
+            items.append(f"(L {_polar_text(begin)} {_polar_text(end)})")
+        elif kind == SEE_OBJECT:
+            name, d, t, p = next(objects)
+            items.append(f"({name} (pol {f2(d)} {f2(t)} {f2(p)}))")
+            atoms.append(name)
+        elif kind == SEE_PLAYER:
+            player = next(players)
+            unum = "" if player.unum is None else f" (id {player.unum})"
+            parts = "".join(f" ({part} {_polar_text(polar)})" for part, polar in player.parts.items())
+            items.append(f"(P (team {player.team}){unum}{parts})")
+            atoms.append(player.team)
+            atoms.extend(player.parts)
+        else:
+            x, y, z = see.my_pos_m  # type: ignore[misc]
+            items.append(f"(mypos {f2(x)} {f2(y)} {f2(z)})")
+    return f"(See {' '.join(items)})"
+
+
+def _format_hear(hear: Hear, atoms: list[str]) -> str:
+    direction = "self" if hear.direction_deg is None else format_fixed2(hear.direction_deg)
+    team = "" if hear.team is None else f"{hear.team} "
+    if hear.team is not None:
+        atoms.append(hear.team)
+    atoms.append(hear.message)
+    return f"(hear {team}{format_fixed2(hear.game_time_s)} {direction} {hear.message})"
+
+
+def _format_game_state(state: GameState, atoms: list[str]) -> str:
+    items = []
+    if state.unum is not None:
+        items.append(f"(unum {state.unum})")
+    if state.team is not None:
+        items.append(f"(team {state.team})")
+        atoms.append(state.team)
+    if state.score_left is not None:
+        items.append(f"(sl {state.score_left})")
+    if state.score_right is not None:
+        items.append(f"(sr {state.score_right})")
+    items.append(f"(t {format_fixed2(state.game_time_s)})")
+    items.append(f"(pm {state.play_mode})")
+    atoms.append(state.play_mode)
+    return f"(GS {' '.join(items)})"
+
+
+def _format_agent_state(state: AgentState) -> str:
+    items = []
+    if state.pan_deg is not None and state.tilt_deg is not None:
+        items.append(f"(pan_tilt {state.pan_deg} {state.tilt_deg})")
+    if state.battery is not None:
+        items.append(f"(battery {format_fixed2(state.battery)})")
+    if state.temperature is not None:
+        items.append(f"(temp {format_fixed2(state.temperature)})")
+    return f"(AgentState {' '.join(items)})"
