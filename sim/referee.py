@@ -18,6 +18,7 @@ from sim.rules.fouls import FoulTracker
 from sim.rules.params import (LEFT, PLAY_MODE_INDEX, PLAY_MODES, RIGHT, SIDES, FoulType, RefereeConfig,
                               default_config, in_box, opponent, side_suffix, team_number)
 from sim.rules.placement import Key, Placer
+from sim.rules.self_collision import SelfCollisionRule
 from sim.world_api import RobotState, WorldView
 
 logger = logging.getLogger(__name__)
@@ -151,6 +152,9 @@ class Referee:
         self._init_spot = {LEFT: [-half_l + 2 * radius, half_w - 2 * radius],
                            RIGHT: [half_l - 2 * radius, half_w - 2 * radius]}
         self.fouls_tracker = FoulTracker(self.config)
+        self.self_collisions = SelfCollisionRule(self.config.self_collision_tolerance_m,
+                                                 self.config.self_collision_joint_frozen_time_s,
+                                                 self.config.self_collision_joint_thaw_time_s)
 
     # ---- public state --------------------------------------------------------------------------------
     @property
@@ -688,15 +692,33 @@ class Referee:
     def _automatic_referee(self, world: WorldView) -> None:
         if self.paused:
             self.fouls_tracker.reset_all()
+            self.self_collisions.reset()
             return
+        enforced = self._check_self_collisions(world)
         placer = self._placer(world)
-        enforced = self.fouls_tracker.update(self._robots, self._ball_pos, self._touching,
-                                             world.touching_robot_pairs(), placer)
+        enforced += self.fouls_tracker.update(self._robots, self._ball_pos, self._touching,
+                                              world.touching_robot_pairs(), placer)
         for foul_type, team, unum in enforced:
             foul = Foul(len(self.fouls) + 1, foul_type, team, unum, self.game_time_s)
             self.fouls.append(foul)
             self.events.append(RefereeEvent("foul", self.game_time_s, self.play_mode, team=team, foul=foul))
             logger.info("foul %s by %s %d at t=%.2f", foul_type.name, team, unum, self.game_time_s)
+
+    def _check_self_collisions(self, world: WorldView) -> list[tuple[FoulType, str, int]]:
+        """Self-collision (type 7): needs body poses, which a world offers as ``robot_body_poses()``
+        (see sim.monitor.SceneSource); without them the rule is skipped."""
+        poses_of = getattr(world, "robot_body_poses", None)
+        if not self.config.foul_on_self_collisions or poses_of is None:
+            return []
+        fouls: list[tuple[FoulType, str, int]] = []
+        for side, unum, robot_type, poses in poses_of():
+            if side is None or unum is None:
+                continue
+            effectors = self.self_collisions.check(side, unum, robot_type, poses, self.game_time_s)
+            if effectors:
+                world.freeze_joints(side, unum, effectors)
+                fouls.append((FoulType.SELF_COLLISION, side, unum))
+        return fouls
 
     # ---- helpers -------------------------------------------------------------------------------------
     def _placer(self, world: WorldView) -> Placer:

@@ -354,3 +354,74 @@ def test_free_kick_double_touch() -> None:
     world.touchers = [("right", 8)]
     run(referee, world, 1)
     assert referee.play_mode == "free_kick_left"
+
+
+def test_trainer_commands() -> None:
+    from sim.rules.trainer import apply_trainer_message
+
+    world = FakeWorld()
+    world.add("left", 3, -5.0, 0.0)
+    referee = Referee(seed=0)
+    assert apply_trainer_message(b"(kickOff Left)", referee, world) == ["kickOff"]
+    assert referee.play_mode == "KickOff_Left"
+    applied = apply_trainer_message(b"(playMode PlayOn)(ball (pos 1 2 0.042)(vel 0.5 0 0))(time 12.5)"
+                                    b"(score (left 2)(right 1))(agent (unum 3)(team Left)(move -3 1 0.4 -90))",
+                                    referee, world)
+    assert applied == ["playMode", "ball", "time", "score", "agent"]
+    assert referee.play_mode == "PlayOn" and referee.game_time_s == 12.5
+    assert (referee.score_left, referee.score_right) == (2, 1)
+    assert world.ball == [1.0, 2.0, 0.042] and world.ball_vel == [0.5, 0.0, 0.0]
+    assert world.moves[-1] == ("left", 3, -3.0, 1.0, 0.4)
+    # Bad commands are skipped, good ones in the same message still apply.
+    assert apply_trainer_message(b"(playMode Nonsense)(ball (pos 1 nan 0))(foo)(kickOff Right)", referee,
+                                 world) == ["kickOff"]
+    import pytest as _pytest
+    from agent.protocol.errors import ProtocolError
+    with _pytest.raises(ProtocolError):
+        apply_trainer_message(b"(kickOff Left", referee, world)
+
+
+def test_self_collision_freezes_joints_once_per_immunity() -> None:
+    import numpy as np
+
+    from kinematics.spec import robot_spec
+
+    class PoseWorld(FakeWorld):
+        def __init__(self, poses) -> None:
+            super().__init__()
+            self.poses = poses
+
+        def robot_body_poses(self):
+            return [("left", 5, 0, self.poses)]
+
+    spec = robot_spec(0)
+    poses = {}
+    for body in spec.bodies:
+        x, y, z = spec.body_position_m(body.name)
+        poses[body.name] = ((x - 2.0, y, z + 0.4), tuple(np.eye(3).ravel()))
+    # Turn the left lower arm about a skewed axis and push it into the torso.
+    axis = np.array([1.0, 2.0, 3.0]) / math.sqrt(14.0)
+    angle = 0.7
+    k = np.array([[0, -axis[2], axis[1]], [axis[2], 0, -axis[0]], [-axis[1], axis[0], 0]])
+    rotation = np.eye(3) + math.sin(angle) * k + (1 - math.cos(angle)) * k @ k
+    poses["llowerarm"] = (poses["torso"][0], tuple(rotation.ravel()))
+    world = PoseWorld(poses)
+    world.add("left", 5, -2.0, 0.0)
+    referee = started(world)
+    run(referee, world, 1)
+    sc = [f for f in referee.fouls if f.type == FoulType.SELF_COLLISION]
+    assert len(sc) == 1 and world.frozen and world.frozen[0][2] == ["lae1", "lae2", "lae3", "lae4"]
+    run(referee, world, 100)  # within frozen + thaw (3 s): no new foul
+    assert len([f for f in referee.fouls if f.type == FoulType.SELF_COLLISION]) == 1
+    run(referee, world, 60)
+    assert len([f for f in referee.fouls if f.type == FoulType.SELF_COLLISION]) == 2
+
+
+def test_parallel_boxes_never_report_a_self_collision() -> None:
+    """The server's unnormalised separating-axis test: aligned boxes always 'separate'."""
+    import numpy as np
+
+    from sim.rules.self_collision import boxes_overlap
+
+    eye = tuple(np.eye(3).ravel())
+    assert not boxes_overlap(((0, 0, 0), eye), (0.1, 0.1, 0.1), ((0.01, 0, 0), eye), (0.1, 0.1, 0.1), 0.04)
