@@ -12,11 +12,13 @@ from __future__ import annotations
 import itertools
 import xml.etree.ElementTree as ET
 from pathlib import Path
-
-import mujoco
+from typing import TYPE_CHECKING
 
 from kinematics.inertia import principal_inertia
 from kinematics.spec import BodySpec, RobotSpec, Shape, robot_spec
+
+if TYPE_CHECKING:
+    import mujoco
 
 CAMERA_SITE = "camera"
 TORSO_SITE = "imu"
@@ -116,8 +118,13 @@ def robot_mjcf_xml(robot_type: int = 0, free: bool = True,
     return ET.tostring(root, encoding="unicode") + "\n"
 
 
-def build_robot_mjspec(robot_type: int = 0, free: bool = True, floor: bool = False) -> mujoco.MjSpec:
-    """The MjSpec of one Nao, parsed from :func:`robot_mjcf_xml` (sim/ attaches these into its world)."""
+def build_robot_mjspec(robot_type: int = 0, free: bool = True, floor: bool = False) -> "mujoco.MjSpec":
+    """The MjSpec of one Nao, parsed from :func:`robot_mjcf_xml` (sim/ attaches these into its world).
+
+    MuJoCo is imported here only: the agent generates the same text for Pinocchio without MuJoCo.
+    """
+    import mujoco
+
     return mujoco.MjSpec.from_string(robot_mjcf_xml(robot_type, free=free, floor=floor))
 
 
