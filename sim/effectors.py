@@ -1,0 +1,220 @@
+"""Joint motors of every robot with SimSpark's hinge-effector semantics (REFERENCE §2.2), as flat arrays.
+
+Semantics reproduced:
+1. A joint command is a target angular velocity [rad/s], clamped to the joint's max speed.
+2. It persists until the next command for that joint.
+3. A new command is ignored while the joint angle is not strictly inside (min, max).
+4. A joint frozen by the self-collision rule gets velocity 0 and ignores commands while frozen.
+
+Physics (see `sim.physics_params`): each motor is a velocity servo of gain g split into implicit joint
+damping g and an applied force g·u, so MuJoCo's ``discrete`` step solves it together with the contacts,
+as ODE solves its motor rows. Normally g = kv (stiff). The 10 N·m bound is met by lowering g for the joints
+that would need more (see `MotorBank.predict`); when a stiff servo turns out to have exceeded the bound
+after all, `MotorBank.check` asks the caller to redo the step with the lowered gain.
+
+All arrays hold one entry per hinge of every robot, robots in the order they were added; nothing here
+loops over joints in Python.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import mujoco
+import numpy as np
+
+from kinematics.spec import JointSpec
+from sim.physics_params import PhysicsParams
+
+#: REFERENCE §4.5: joints frozen by the self-collision rule stay at velocity 0 this long [s].
+FREEZE_DURATION_S = 1.0
+#: A joint within this angle of a stop, pushing into it, is "at the stop" for the torque check [rad].
+_STOP_BAND_RAD = 0.002
+
+
+@dataclass
+class _Block:
+    start: int
+    stop: int
+
+
+class MotorBank:
+    """Target velocities and saturation state of all joint motors of the world.
+
+    Args:
+        params: physics parameters (servo gain, torque tolerance).
+    """
+
+    _FIELDS = ("target", "max_speed", "min_rad", "max_rad", "max_torque", "frozen_until", "gain",
+               "applied", "start_velocity", "dof", "qadr")
+
+    def __init__(self, params: PhysicsParams) -> None:
+        self.params = params
+        self.blocks: dict[int, _Block] = {}
+        self.target = np.zeros(0)          # commanded velocity [rad/s]
+        self.max_speed = np.zeros(0)       # [rad/s]
+        self.min_rad = np.zeros(0)
+        self.max_rad = np.zeros(0)
+        self.max_torque = np.zeros(0)      # [N·m]
+        self.frozen_until = np.zeros(0)    # server time until which commands are ignored [s]
+        self.gain = np.zeros(0)            # servo gain of the current step [N·m·s/rad]
+        self.applied = np.zeros(0)         # motor torque of the last step [N·m]
+        self.start_velocity = np.zeros(0)  # joint velocity at the start of the last step [rad/s]
+        self.dof = np.zeros(0, dtype=np.intp)   # qvel / dof address of each joint
+        self.qadr = np.zeros(0, dtype=np.intp)  # qpos address of each joint
+        self.re_solves = 0
+        self.steps = 0
+        self._diagonal: np.ndarray | None = None
+
+    # ---- robots --------------------------------------------------------------------------------------
+    def add_robot(self, key: int, joints: tuple[JointSpec, ...]) -> None:
+        """Append the motors of one robot (targets 0)."""
+        n = len(joints)
+        start = self.target.size
+        self.blocks[key] = _Block(start, start + n)
+        extra = {
+            "target": np.zeros(n), "max_speed": np.array([j.max_speed_rad_s for j in joints]),
+            "min_rad": np.array([j.min_rad for j in joints]), "max_rad": np.array([j.max_rad for j in joints]),
+            "max_torque": np.array([j.max_torque_nm for j in joints]), "frozen_until": np.full(n, -np.inf),
+            "gain": np.full(n, self.params.motor_kv), "applied": np.zeros(n), "start_velocity": np.zeros(n),
+            "dof": np.zeros(n, dtype=np.intp),
+            "qadr": np.zeros(n, dtype=np.intp),
+        }
+        for name in self._FIELDS:
+            setattr(self, name, np.concatenate([getattr(self, name), extra[name]]))
+
+    def remove_robot(self, key: int) -> None:
+        """Drop the motors of one robot; later robots move down."""
+        block = self.blocks.pop(key)
+        keep = np.r_[0:block.start, block.stop:self.target.size]
+        for name in self._FIELDS:
+            setattr(self, name, getattr(self, name)[keep])
+        n = block.stop - block.start
+        for other in self.blocks.values():
+            if other.start >= block.stop:
+                other.start -= n
+                other.stop -= n
+
+    def set_addresses(self, key: int, qadr: np.ndarray, dof: np.ndarray) -> None:
+        """Bind a robot's motors to the model's qpos/dof addresses (after every recompile)."""
+        block = self.blocks[key]
+        self.qadr[block.start:block.stop] = qadr
+        self.dof[block.start:block.stop] = dof
+
+    def span(self, key: int) -> slice:
+        block = self.blocks[key]
+        return slice(block.start, block.stop)
+
+    # ---- commands ------------------------------------------------------------------------------------
+    def command(self, key: int, local_index: np.ndarray, value_rad_s: np.ndarray, qpos: np.ndarray,
+                now_s: float) -> None:
+        """Apply joint commands of one robot (rules 1-4 of the module docstring).
+
+        Args:
+            key: robot key.
+            local_index: joint indices within the robot (spec order), shape (k,).
+            value_rad_s: commanded velocities [rad/s], shape (k,), finite.
+            qpos: the current mjData.qpos (angles are read from it).
+            now_s: server time [s] (for the freeze rule).
+        """
+        index = self.blocks[key].start + np.asarray(local_index, dtype=np.intp)
+        angle = qpos[self.qadr[index]]
+        inside = (angle > self.min_rad[index]) & (angle < self.max_rad[index]) & (self.frozen_until[index] <= now_s)
+        index = index[inside]
+        limit = self.max_speed[index]
+        self.target[index] = np.clip(np.asarray(value_rad_s)[inside], -limit, limit)
+
+    def reset_robot(self, key: int) -> None:
+        """Forget a robot's motor history (after a placement zeroed its velocities)."""
+        span = self.span(key)
+        self.applied[span] = 0.0
+        self.start_velocity[span] = 0.0
+
+    def freeze(self, key: int, local_index: np.ndarray, now_s: float) -> None:
+        """Self-collision rule: velocity 0 and commands ignored for `FREEZE_DURATION_S`."""
+        index = self.blocks[key].start + np.asarray(local_index, dtype=np.intp)
+        self.target[index] = 0.0
+        self.frozen_until[index] = now_s + FREEZE_DURATION_S
+
+    def targets(self, key: int) -> np.ndarray:
+        """The robot's current target velocities [rad/s] (a copy)."""
+        return self.target[self.span(key)].copy()
+
+    # ---- physics -------------------------------------------------------------------------------------
+    def bind_model(self, model: mujoco.MjModel) -> None:
+        """Cache model-dependent addresses (after every recompile)."""
+        self._diagonal = model.M_rowadr[self.dof] + model.M_rownnz[self.dof] - 1  # CSR rows end at the diagonal
+
+    def predict(self, model: mujoco.MjModel, data: mujoco.MjData) -> None:
+        """Choose each motor's servo gain for the coming step and write damping and forces.
+
+        Per joint, with I the joint-space inertia (diagonal of M: the rest of the robot held, as its motors
+        hold it), e = u - q̇ and L the load the motor met in the last step (its torque minus I times the
+        acceleration it saw), the torque needed to reach u in one step is L + I e / h. Within the bound the
+        motor is a stiff servo (gain kv). Beyond it:
+
+        * a joint that was within the bound gets g = τmax / |e - h (±τmax - L) / I|, so the implicit step
+          I (q̇⁺ - q̇)/h = g (u - q̇⁺) - L delivers exactly the bound (ODE's saturated motor);
+        * a joint that was already saturated (its load is then mostly a stop or a closed chain pushing
+          back) gets the stuck joint's gain g = τmax / |e|, whose torque stays within the bound however
+          the joint moves toward its target. It stays saturated while it needs 80 % of the bound.
+
+        A low-gain servo cannot drive a joint past its target, so wrong guesses in coupled chains stay
+        stable; `check` corrects the guesses that exceed the bound.
+        """
+        if self.target.size == 0:
+            return
+        h = model.opt.timestep
+        kv, limit = self.params.motor_kv, self.max_torque
+        velocity = data.qvel[self.dof]
+        inertia = np.maximum(data.M[self._diagonal], 1e-9)
+        load = self.applied - inertia * (velocity - self.start_velocity) / h
+        self.start_velocity = velocity
+        error = self.target - velocity
+        needed = load + inertia * error / h
+        was_capped = self.gain < kv
+        capped = np.abs(needed) > np.where(was_capped, 0.8 * limit, limit)
+        if not capped.any():
+            self.gain = np.full(error.size, kv)
+        else:
+            free_motion = np.abs(error - h * (np.sign(needed) * limit - load) / inertia)
+            remaining = np.where(was_capped, np.abs(error), free_motion)
+            self.gain = np.where(capped, limit / np.maximum(remaining, limit / kv), kv)
+        self._write(model, data)
+
+    def _write(self, model: mujoco.MjModel, data: mujoco.MjData) -> None:
+        model.dof_damping[self.dof] = self.gain
+        data.qfrc_applied[self.dof] = self.gain * self.target
+
+    def check(self, model: mujoco.MjModel, data: mujoco.MjData, final: bool = False) -> bool:
+        """After a step: record the motor torques; True when a motor exceeded the bound (re-solve needed).
+
+        The re-solve gives those joints the gain of a stuck joint, τmax / |u - q̇|, whose torque stays
+        within the bound however the joint moves toward its target. With ``final`` the step is kept
+        whatever the outcome and False is returned.
+        """
+        if self.target.size == 0:
+            return False
+        torque = self.gain * (self.target - data.qvel[self.dof])
+        self.applied = torque
+        if final:
+            return False
+        over = np.abs(torque) > self.max_torque * (1.0 + self.params.motor_torque_tolerance)
+        if not over.any():
+            return False
+        # Torque pushing a joint into its stop is absorbed by the stop (both act on the same two bodies),
+        # so it changes nothing else; such joints get the lower gain from the next step on, no re-solve.
+        angle = data.qpos[self.qadr]
+        at_stop = ((torque > 0) & (angle >= self.max_rad - _STOP_BAND_RAD)) | \
+            ((torque < 0) & (angle <= self.min_rad + _STOP_BAND_RAD))
+        if not (over & ~at_stop).any():
+            error = np.abs(self.target - self.start_velocity)
+            self.gain = np.where(over, self.max_torque / np.maximum(error, self.max_torque / self.params.motor_kv),
+                                 self.gain)
+            self.applied = np.where(over, np.sign(torque) * self.max_torque, torque)
+            return False
+        error = np.abs(self.target - self.start_velocity)
+        stuck = self.max_torque / np.maximum(error, self.max_torque / self.params.motor_kv)
+        self.gain = np.where(over, np.minimum(stuck, self.gain), self.gain)
+        self._write(model, data)
+        return True

@@ -1,0 +1,551 @@
+"""The MuJoCo soccer world: field, goals, ball and up to 22 Naos, stepped one 20 ms cycle at a time.
+
+It implements `sim.world_api.WorldView` for the referee, takes joint commands and beams for the engine,
+and keeps the raw sensor values that `sim.perceptors` and `sim.vision` turn into percepts. Physics choices
+and their measured effects are in `sim.physics_params`.
+
+A cycle, as the engine drives it (the order reproduces rcssserver3d's, REFERENCE §3.9):
+1. `begin_cycle` samples the accelerometers (SimSpark's accelerometer updates before the physics step, so
+   ACC lags the contact forces by one cycle: measured, FRP spike in message 7, ACC spike in message 8);
+2. the engine applies beams (the beam effector acts after that sample: measured, a beam shows in ACC one
+   cycle later than an init move);
+3. `step` runs the physics (motor active set, ball rebound, contact bookkeeping);
+4. the referee may move robots and the ball;
+5. `end_cycle` updates body poses and the gyro/joint/foot readings for the perceptors.
+
+Robots are added and removed at run time by editing the MjSpec and recompiling with the state kept
+(`MjSpec.recompile`), since agents connect one by one. Until a robot has a team (successful init) it
+collides only with the field, goals, walls and ball, so robots created at the same spot do not explode.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+from dataclasses import dataclass, field
+
+import mujoco
+import numpy as np
+
+from kinematics.mjcf import build_robot_mjspec
+from kinematics.spec import RobotSpec, robot_spec
+from sim.effectors import MotorBank
+from sim.field import BALL_MASS_KG, BALL_RADIUS_M, add_static_geometry
+from sim.physics_params import PhysicsParams, default_physics_params
+from sim.world_api import RobotState
+
+logger = logging.getLogger(__name__)
+
+#: Where SimSpark builds a new robot (torso centre, REFERENCE §2.1); facing +y (measured: first vision).
+SPAWN_POSITION_M = (0.0, -1.0, 1.5)
+#: Parts other robots can see, in the order vision reports them (REFERENCE §2.3).
+VISIBLE_PARTS: tuple[str, ...] = ("head", "rlowerarm", "llowerarm", "rfoot", "lfoot")
+#: Robots in the world at most (collision bits 0..27 are robot slots).
+MAX_ROBOTS = 28
+
+# Contact filtering by bit masks (cheaper than per-pair excludes): robot slot i collides with everything
+# except its own geoms; a robot without a team ("ghost") only with static geometry and the ball.
+_WORLD_BIT = 1 << 30
+_BALL_BIT = 1 << 29
+_GHOST_BIT = 1 << 28
+_ROBOT_BITS = (1 << MAX_ROBOTS) - 1
+_ALL_BITS = _ROBOT_BITS | _WORLD_BIT | _BALL_BIT | _GHOST_BIT
+
+
+@dataclass
+class Robot:
+    """One robot in the world: identity, team, and its addresses in the compiled model.
+
+    key: the engine's id for it (one robot per agent connection); prefix: name prefix in the model;
+    slot: collision bit; side: "left"/"right" after a successful init, else None; unum: 1-11 or None.
+    """
+
+    key: int
+    robot_type: int
+    spec: RobotSpec
+    prefix: str
+    slot: int
+    side: str | None = None
+    unum: int | None = None
+    root_qadr: int = 0
+    root_dof: int = 0
+    torso_body: int = 0
+    head_body: int = 0
+    part_bodies: np.ndarray = field(default_factory=lambda: np.zeros(5, dtype=np.intp))
+    foot_bodies: dict[str, int] = field(default_factory=dict)
+    sensor_slots: dict[str, int] = field(default_factory=dict)
+    geoms: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.intp))
+    velocity_sample: np.ndarray = field(default_factory=lambda: np.zeros(3))
+    acc_m_s2: np.ndarray = field(default_factory=lambda: np.zeros(3))
+
+
+class World:
+    """The physics world; see the module docstring for the cycle.
+
+    Args:
+        params: physics parameters (`sim.physics_params.default_physics_params()` if None).
+    """
+
+    def __init__(self, params: PhysicsParams | None = None) -> None:
+        self.params = params or default_physics_params()
+        self.spec = self._base_spec()
+        self.model = self.spec.compile()
+        self.data = mujoco.MjData(self.model)
+        self.by_key: dict[int, Robot] = {}
+        self.motors = MotorBank(self.params)
+        self.time_s = 0.0
+        self._ball_touchers: list[tuple[str, int]] = []
+        self._touching_pairs: list[tuple[tuple[str, int], tuple[str, int]]] = []
+        self._reindex()
+        mujoco.mj_forward(self.model, self.data)
+
+    # ---- construction --------------------------------------------------------------------------------
+    def _base_spec(self) -> mujoco.MjSpec:
+        p = self.params
+        spec = mujoco.MjSpec()
+        spec.modelname = "simspark_soccer"
+        spec.option.timestep = p.timestep_s
+        spec.option.gravity = [0.0, 0.0, -p.gravity_m_s2]
+        spec.option.integrator = mujoco.mjtIntegrator.mjINT_DISCRETE
+        spec.option.cone = (mujoco.mjtCone.mjCONE_ELLIPTIC if p.cone == "elliptic"
+                            else mujoco.mjtCone.mjCONE_PYRAMIDAL)
+        spec.option.solver = mujoco.mjtSolver.mjSOL_NEWTON
+        spec.option.iterations = p.solver_iterations
+        for geom in add_static_geometry(spec):
+            geom.contype, geom.conaffinity = _WORLD_BIT, _ALL_BITS
+            geom.condim = p.contact_condim
+            geom.friction = [p.friction, 0.005, 0.0001]
+        ball = spec.worldbody.add_body(name="ball", pos=[0.0, 0.0, BALL_RADIUS_M])
+        ball.add_freejoint(name="ball")
+        ball.add_geom(name="ball", type=mujoco.mjtGeom.mjGEOM_SPHERE, size=[BALL_RADIUS_M, 0, 0],
+                      mass=BALL_MASS_KG, contype=_BALL_BIT, conaffinity=_ALL_BITS, condim=p.contact_condim,
+                      friction=[p.friction, 0.005, 0.0001], rgba=[1.0, 0.5, 0.0, 1.0])
+        return spec
+
+    def add_robot(self, key: int, robot_type: int = 0,
+                  position_m: tuple[float, float, float] = SPAWN_POSITION_M) -> Robot:
+        """Build a robot (REFERENCE §3.2 step 2): torso at ``position_m``, zero pose, facing +y, no team.
+
+        Raises:
+            ValueError: ``key`` is taken or the world is full.
+            kinematics.SpecError: unknown robot type.
+        """
+        if key in self.by_key:
+            raise ValueError(f"robot key {key} already in the world")
+        used = {r.slot for r in self.by_key.values()}
+        free = [s for s in range(MAX_ROBOTS) if s not in used]
+        if not free:
+            raise ValueError(f"the world holds at most {MAX_ROBOTS} robots")
+        spec = robot_spec(robot_type)
+        robot = Robot(key=key, robot_type=robot_type, spec=spec, prefix=f"r{key}_", slot=free[0])
+        child = build_robot_mjspec(robot_type)
+        for exclude in list(child.excludes):  # own parts are filtered by the collision bits instead
+            child.delete(exclude)
+        p = self.params
+        for geom in child.geoms:
+            geom.condim = p.contact_condim
+            geom.friction = [p.friction, 0.005, 0.0001]
+        for joint in child.joints:
+            if joint.name != "root":
+                joint.solref_limit = list(p.joint_limit_solref)
+                joint.solimp_limit = list(p.joint_limit_solimp)
+        frame = self.spec.worldbody.add_frame(name=f"{robot.prefix}frame")
+        self.spec.attach(child, prefix=robot.prefix, frame=frame)
+        self.by_key[key] = robot
+        self.motors.add_robot(key, spec.joints)
+        self._recompile()
+        self._place_root(robot, position_m, yaw_rad=0.0)
+        # The first accelerometer reading of a new robot is free fall (as in the recorded first message).
+        robot.velocity_sample = np.array([0.0, 0.0, p.gravity_m_s2 * p.cycle_s])
+        mujoco.mj_kinematics(self.model, self.data)
+        return robot
+
+    def remove_robot(self, key: int) -> None:
+        """Take a robot out of the world (agent disconnected)."""
+        robot = self.by_key.pop(key)
+        self.spec.delete(self.spec.body(f"{robot.prefix}torso"))
+        frame = next((f for f in self.spec.frames if f.name == f"{robot.prefix}frame"), None)
+        if frame is not None:
+            self.spec.delete(frame)
+        self.motors.remove_robot(key)
+        self._recompile()
+
+    def _recompile(self) -> None:
+        self.model, self.data = self.spec.recompile(self.model, self.data)
+        self._reindex()
+
+    def _reindex(self) -> None:
+        """Recompute every cached model address (after each recompile)."""
+        m = self.model
+        self.ball_body = m.body("ball").id
+        self.ball_geom = m.geom("ball").id
+        ball_joint = m.joint("ball").id
+        self.ball_qadr = int(m.jnt_qposadr[ball_joint])
+        self.ball_dof = int(m.jnt_dofadr[ball_joint])
+        # Free-joint damping = SimSpark's ball drag exactly (linear dofs: world velocity of the centre;
+        # angular dofs: body-frame rate, isotropic for a sphere).
+        p = self.params
+        m.dof_damping[self.ball_dof:self.ball_dof + 3] = p.ball_linear_drag_n_s_m
+        m.dof_damping[self.ball_dof + 3:self.ball_dof + 6] = p.ball_angular_drag_nm_s
+        self.geom_robot = np.full(m.ngeom, -1, dtype=np.intp)
+        self.geom_sensor = np.full(m.ngeom, -1, dtype=np.intp)
+        sensor_geoms: list[int] = []
+        sensor_bodies: list[int] = []
+        self.order: list[int] = list(self.by_key)
+        for index, robot in enumerate(self.by_key.values()):
+            prefix = robot.prefix
+            root = m.joint(f"{prefix}root").id
+            robot.root_qadr = int(m.jnt_qposadr[root])
+            robot.root_dof = int(m.jnt_dofadr[root])
+            robot.torso_body = m.body(f"{prefix}torso").id
+            robot.head_body = m.body(f"{prefix}head").id
+            robot.part_bodies = np.array([m.body(prefix + part).id for part in VISIBLE_PARTS], dtype=np.intp)
+            bodies = {m.body(prefix + b.name).id for b in robot.spec.bodies}
+            robot.geoms = np.array([g for g in range(m.ngeom) if m.geom_bodyid[g] in bodies], dtype=np.intp)
+            self.geom_robot[robot.geoms] = index
+            robot.foot_bodies = {s.name: m.body(prefix + s.body).id for s in robot.spec.sensors if s.kind == "force"}
+            robot.sensor_slots = {}
+            for sensor in robot.spec.sensors:
+                if sensor.kind == "force":
+                    slot = len(sensor_geoms)
+                    robot.sensor_slots[sensor.name] = slot
+                    sensor_geoms.append(m.geom(prefix + sensor.body).id)
+                    sensor_bodies.append(m.body(prefix + sensor.body).id)
+                    self.geom_sensor[sensor_geoms[-1]] = slot
+            joints = [m.joint(prefix + j.perceptor).id for j in robot.spec.joints]
+            self.motors.set_addresses(robot.key, m.jnt_qposadr[joints], m.jnt_dofadr[joints])
+            # Whole-body drag as torso free-joint damping, N bodies x 0.01 (see sim.physics_params).
+            n_bodies = len(robot.spec.bodies)
+            m.dof_damping[robot.root_dof:robot.root_dof + 3] = n_bodies * p.body_linear_drag_n_s_m
+            m.dof_damping[robot.root_dof + 3:robot.root_dof + 6] = n_bodies * p.body_angular_drag_nm_s
+            self._apply_collision_bits(robot)
+        self.motors.bind_model(m)
+        self.sensor_geom = np.array(sensor_geoms, dtype=np.intp)
+        self.sensor_body = np.array(sensor_bodies, dtype=np.intp)
+        self.frp_active = np.zeros(len(sensor_geoms), dtype=bool)
+        self.frp_point = np.zeros((len(sensor_geoms), 3))
+        self.frp_force = np.zeros((len(sensor_geoms), 3))
+        self.root_qadr = np.array([r.root_qadr for r in self.by_key.values()], dtype=np.intp)
+        self.root_dof = np.array([r.root_dof for r in self.by_key.values()], dtype=np.intp)
+        self.head_bodies = np.array([r.head_body for r in self.by_key.values()], dtype=np.intp)
+
+    def _apply_collision_bits(self, robot: Robot) -> None:
+        m = self.model
+        if robot.side is None:
+            contype, conaffinity = _GHOST_BIT, _WORLD_BIT | _BALL_BIT
+        else:
+            bit = 1 << robot.slot
+            contype, conaffinity = bit, (_ROBOT_BITS & ~bit) | _WORLD_BIT | _BALL_BIT
+        colliders = robot.geoms[m.geom_contype[robot.geoms] != 0]
+        m.geom_contype[colliders] = contype
+        m.geom_conaffinity[colliders] = conaffinity
+        for g in colliders:  # keep the spec in step, so a recompile reproduces the masks
+            geom = self.spec.geom(m.geom(int(g)).name)
+            geom.contype, geom.conaffinity = contype, conaffinity
+
+    def set_team(self, key: int, side: str | None, unum: int | None) -> None:
+        """Give a robot its side ("left"/"right") and number after init (None: no team, a ghost)."""
+        robot = self.by_key[key]
+        robot.side, robot.unum = side, unum
+        self._apply_collision_bits(robot)
+
+    # ---- poses ---------------------------------------------------------------------------------------
+    def _place_root(self, robot: Robot, position_m: tuple[float, float, float], yaw_rad: float) -> None:
+        """Torso upright at ``position_m`` rotated by ``yaw_rad`` about z; joints kept; velocities zeroed."""
+        q = self.data.qpos
+        a = robot.root_qadr
+        q[a:a + 3] = position_m
+        q[a + 3:a + 7] = (math.cos(yaw_rad / 2), 0.0, 0.0, math.sin(yaw_rad / 2))
+        span = self.motors.span(robot.key)
+        self.data.qvel[robot.root_dof:robot.root_dof + 6] = 0.0
+        self.data.qvel[self.motors.dof[span]] = 0.0
+        self.motors.reset_robot(robot.key)
+
+    def place_robot(self, key: int, x_m: float, y_m: float, heading_deg: float | None, z_m: float = 0.4) -> None:
+        """Place a robot upright (beam, init, referee): heading 0 = facing +x; None keeps the heading."""
+        robot = self.by_key[key]
+        if heading_deg is None:
+            heading_deg = self.heading_deg(key)
+        # The body's forward axis is +y, so facing +x is a yaw of -90°.
+        self._place_root(robot, (x_m, y_m, z_m), math.radians(heading_deg - 90.0))
+        mujoco.mj_kinematics(self.model, self.data)
+
+    def torso_rotation(self, key: int) -> np.ndarray:
+        """Torso orientation (3x3, columns = torso x right, y forward, z up in the world)."""
+        robot = self.by_key[key]
+        return _quat_to_matrix(self.data.qpos[robot.root_qadr + 3:robot.root_qadr + 7])
+
+    def torso_position(self, key: int) -> np.ndarray:
+        robot = self.by_key[key]
+        return self.data.qpos[robot.root_qadr:robot.root_qadr + 3].copy()
+
+    def heading_deg(self, key: int) -> float:
+        forward = self.torso_rotation(key)[:, 1]
+        return math.degrees(math.atan2(forward[1], forward[0]))
+
+    # ---- the cycle -----------------------------------------------------------------------------------
+    def begin_cycle(self) -> None:
+        """Sample the accelerometers (before beams and physics; see the module docstring)."""
+        if not self.by_key:
+            return
+        dt = self.params.cycle_s
+        gravity = np.array([0.0, 0.0, -self.params.gravity_m_s2])
+        q, v = self.data.qpos, self.data.qvel
+        velocity = v[self.root_dof[:, None] + np.arange(3)]
+        rotation = _quat_to_matrix_batch(q[self.root_qadr[:, None] + np.arange(3, 7)])
+        for index, robot in enumerate(self.by_key.values()):
+            world_acc = (velocity[index] - robot.velocity_sample) / dt - gravity
+            robot.acc_m_s2 = rotation[index].T @ world_acc
+            robot.velocity_sample = velocity[index].copy()
+
+    def step(self) -> None:
+        """One cycle of physics (``substeps`` MuJoCo steps), then contact bookkeeping."""
+        m, d, motors = self.model, self.data, self.motors
+        for _ in range(self.params.substeps):
+            ball_velocity = d.qvel[self.ball_dof:self.ball_dof + 3].copy()
+            motors.predict(m, d)
+            passes = self.params.motor_active_set_passes if motors.target.size else 1
+            saved = _save_state(d) if passes > 1 else None
+            for attempt in range(passes):
+                mujoco.mj_step(m, d)
+                motors.steps += 1
+                if saved is None or not motors.check(m, d, final=attempt == passes - 1):
+                    break
+                motors.re_solves += 1
+                _restore_state(d, saved)
+            self._ball_rebound(ball_velocity)
+        self.time_s += self.params.cycle_s
+        self._contacts()
+
+    def end_cycle(self) -> None:
+        """Bring body poses up to date with the state (after the referee's moves), for the perceptors."""
+        mujoco.mj_kinematics(self.model, self.data)
+
+    def _ball_rebound(self, velocity_before: np.ndarray) -> None:
+        """ODE-style bounce of the ball (see `sim.physics_params`): restitution above the bounce speed."""
+        d, m = self.data, self.model
+        if d.ncon == 0:
+            return
+        geoms = d.contact.geom
+        hits = np.nonzero((geoms[:, 0] == self.ball_geom) | (geoms[:, 1] == self.ball_geom))[0]
+        for i in hits:
+            g1, g2 = int(geoms[i, 0]), int(geoms[i, 1])
+            normal = d.contact.frame[i, :3]
+            sign = 1.0 if g2 == self.ball_geom else -1.0   # the normal points from geom1 to geom2
+            other = g1 if g2 == self.ball_geom else g2
+            other_velocity = self._point_velocity(int(m.geom_bodyid[other]), d.contact.pos[i])
+            approach = -sign * float(np.dot(velocity_before - other_velocity, normal))
+            if approach <= self.params.ball_min_bounce_speed_m_s:
+                continue
+            ball_v = d.qvel[self.ball_dof:self.ball_dof + 3]
+            separation = sign * float(np.dot(ball_v - other_velocity, normal))
+            wanted = self.params.ball_restitution * approach
+            if separation < wanted:
+                ball_v += sign * (wanted - separation) * normal
+
+    def _point_velocity(self, body: int, point: np.ndarray) -> np.ndarray:
+        """World velocity of ``point`` moving with ``body`` at the start of the last step (from cvel)."""
+        if body == 0:
+            return np.zeros(3)
+        d = self.data
+        rot, lin = d.cvel[body, :3], d.cvel[body, 3:]
+        origin = d.subtree_com[self.model.body_rootid[body]]
+        return lin + np.cross(rot, point - origin)
+
+    def _contacts(self) -> None:
+        """Foot force sensors, ball touchers and robot pairs in contact, from the last step's contacts."""
+        m, d = self.model, self.data
+        self._ball_touchers = []
+        self._touching_pairs = []
+        self.frp_active = np.zeros(self.sensor_geom.size, dtype=bool)
+        n = d.ncon
+        if n == 0:
+            return
+        geoms = d.contact.geom
+        g1, g2 = geoms[:, 0], geoms[:, 1]
+        r1, r2 = self.geom_robot[g1], self.geom_robot[g2]
+        involved = (r1 >= 0) | (r2 >= 0)
+        if not involved.any():
+            return
+        robots = list(self.by_key.values())
+        ball = self.ball_geom
+        for i in np.nonzero(involved & ((g1 == ball) | (g2 == ball)))[0]:
+            robot = robots[r1[i] if r1[i] >= 0 else r2[i]]
+            if robot.side is not None:
+                self._ball_touchers.append((robot.side, robot.unum))
+        pairs = involved & (r1 >= 0) & (r2 >= 0) & (r1 != r2)
+        if pairs.any():
+            found = set()
+            for a, b in np.unique(np.sort(np.stack([r1[pairs], r2[pairs]], axis=1), axis=1), axis=0):
+                ra, rb = robots[a], robots[b]
+                if ra.side is not None and rb.side is not None:
+                    found.add(tuple(sorted(((ra.side, ra.unum), (rb.side, rb.unum)))))
+            self._touching_pairs = sorted(found)  # type: ignore[arg-type]
+        self._ball_touchers = sorted(set(self._ball_touchers))
+        # Foot sensors (REFERENCE §3.4): |f|-weighted mean contact point and summed force, foot frame.
+        s1, s2 = self.geom_sensor[g1], self.geom_sensor[g2]
+        on1, on2 = s1 >= 0, s2 >= 0
+        if not (on1.any() or on2.any()):
+            return
+        forces = _contact_forces_world(m, d)                  # on geom2, world frame
+        slots = np.concatenate([s2[on2], s1[on1]])
+        force = np.concatenate([forces[on2], -forces[on1]])
+        pos = np.concatenate([d.contact.pos[on2], d.contact.pos[on1]])
+        weight = np.sqrt((force * force).sum(axis=1))
+        count = self.sensor_geom.size
+        active = np.bincount(slots, minlength=count) > 0
+        wsum = np.bincount(slots, weights=weight, minlength=count)
+        fsum = np.stack([np.bincount(slots, weights=force[:, k], minlength=count) for k in range(3)], axis=1)
+        psum = np.stack([np.bincount(slots, weights=pos[:, k] * weight, minlength=count) for k in range(3)], axis=1)
+        plain = np.stack([np.bincount(slots, weights=pos[:, k], minlength=count) for k in range(3)], axis=1)
+        hits = np.maximum(np.bincount(slots, minlength=count), 1)[:, None]
+        centre = np.where(wsum[:, None] > 0, psum / np.where(wsum > 0, wsum, 1.0)[:, None], plain / hits)
+        bodies = self.sensor_body
+        rotation = d.xmat[bodies].reshape(-1, 3, 3)
+        self.frp_point = np.einsum("sji,sj->si", rotation, centre - d.xpos[bodies])
+        self.frp_force = np.einsum("sji,sj->si", rotation, fsum)
+        self.frp_active = active
+
+    # ---- sensor readings ------------------------------------------------------------------------------
+    def joint_angles_rad(self, key: int) -> np.ndarray:
+        """Hinge angles of one robot in spec order [rad]."""
+        return self.data.qpos[self.motors.qadr[self.motors.span(key)]]
+
+    def all_joint_angles_rad(self) -> np.ndarray:
+        """Hinge angles of every robot, robots in `order`, each in spec order [rad]."""
+        return self.data.qpos[self.motors.qadr]
+
+    def gyro_rad_s(self, key: int) -> np.ndarray:
+        """Torso angular velocity in torso axes (x right, y forward, z up) [rad/s]."""
+        dof = self.by_key[key].root_dof
+        return self.data.qvel[dof + 3:dof + 6].copy()
+
+    def accelerometer_m_s2(self, key: int) -> np.ndarray:
+        """Proper acceleration of the torso in torso axes [m/s²] (sampled by `begin_cycle`)."""
+        return self.by_key[key].acc_m_s2
+
+    def foot_forces(self, key: int) -> dict[str, tuple[np.ndarray, np.ndarray]]:
+        """Sensor name -> (contact point [m], force [N]) in foot coordinates; only feet with contact."""
+        robot = self.by_key[key]
+        return {name: (self.frp_point[slot], self.frp_force[slot])
+                for name, slot in robot.sensor_slots.items() if self.frp_active[slot]}
+
+    def body_position(self, body: int) -> np.ndarray:
+        return self.data.xpos[body]
+
+    def robot_of(self, side: str, unum: int) -> Robot:
+        """The robot with this side and number; KeyError when none."""
+        for robot in self.by_key.values():
+            if robot.side == side and robot.unum == unum:
+                return robot
+        raise KeyError(f"no robot {side} {unum}")
+
+    # ---- WorldView -----------------------------------------------------------------------------------
+    def ball_position(self) -> tuple[float, float, float]:
+        a = self.ball_qadr
+        return tuple(float(x) for x in self.data.qpos[a:a + 3])  # type: ignore[return-value]
+
+    def ball_velocity(self) -> tuple[float, float, float]:
+        a = self.ball_dof
+        return tuple(float(x) for x in self.data.qvel[a:a + 3])  # type: ignore[return-value]
+
+    def set_ball(self, position_m: tuple[float, float, float],
+                 velocity_m_s: tuple[float, float, float] = (0.0, 0.0, 0.0)) -> None:
+        a, v = self.ball_qadr, self.ball_dof
+        self.data.qpos[a:a + 3] = position_m
+        self.data.qpos[a + 3:a + 7] = (1.0, 0.0, 0.0, 0.0)
+        self.data.qvel[v:v + 3] = velocity_m_s
+        self.data.qvel[v + 3:v + 6] = 0.0
+
+    def robots(self) -> list[RobotState]:
+        """Robots with a team, for the referee."""
+        out = []
+        for robot in self.robots_with_team():
+            a, dof = robot.root_qadr, robot.root_dof
+            rotation = _quat_to_matrix(self.data.qpos[a + 3:a + 7])
+            forward = rotation[:, 1]
+            out.append(RobotState(
+                team=robot.side, unum=robot.unum, robot_type=robot.robot_type,  # type: ignore[arg-type]
+                torso_pos_m=tuple(float(x) for x in self.data.qpos[a:a + 3]),  # type: ignore[arg-type]
+                torso_vel_m_s=tuple(float(x) for x in self.data.qvel[dof:dof + 3]),  # type: ignore[arg-type]
+                torso_up_z=float(rotation[2, 2]),
+                heading_deg=math.degrees(math.atan2(forward[1], forward[0]))))
+        return out
+
+    def robots_with_team(self) -> list[Robot]:
+        return [r for r in self.by_key.values() if r.side is not None]
+
+    def move_robot(self, team: str, unum: int, x_m: float, y_m: float, heading_deg: float | None = None,
+                   z_m: float = 0.4) -> None:
+        self.place_robot(self.robot_of(team, unum).key, x_m, y_m, heading_deg, z_m)
+
+    def ball_touchers(self) -> list[tuple[str, int]]:
+        return list(self._ball_touchers)
+
+    def touching_robot_pairs(self) -> list[tuple[tuple[str, int], tuple[str, int]]]:
+        return list(self._touching_pairs)
+
+    def freeze_joints(self, team: str, unum: int, effectors: list[str]) -> None:
+        """Self-collision rule: these joints get velocity 0 and ignore commands for 1 s (REFERENCE §4.5)."""
+        robot = self.robot_of(team, unum)
+        names = [j.effector for j in robot.spec.joints]
+        index = np.array([names.index(e) for e in effectors if e in names], dtype=np.intp)
+        self.motors.freeze(robot.key, index, self.time_s)
+
+
+def _quat_to_matrix(quat: np.ndarray) -> np.ndarray:
+    out = np.zeros(9)
+    mujoco.mju_quat2Mat(out, np.asarray(quat, dtype=float))
+    return out.reshape(3, 3)
+
+
+def _quat_to_matrix_batch(quat: np.ndarray) -> np.ndarray:
+    """(n, 4) unit quaternions (w, x, y, z) -> (n, 3, 3) rotation matrices."""
+    w, x, y, z = quat[:, 0], quat[:, 1], quat[:, 2], quat[:, 3]
+    out = np.empty((quat.shape[0], 3, 3))
+    out[:, 0, 0] = 1 - 2 * (y * y + z * z)
+    out[:, 0, 1] = 2 * (x * y - w * z)
+    out[:, 0, 2] = 2 * (x * z + w * y)
+    out[:, 1, 0] = 2 * (x * y + w * z)
+    out[:, 1, 1] = 1 - 2 * (x * x + z * z)
+    out[:, 1, 2] = 2 * (y * z - w * x)
+    out[:, 2, 0] = 2 * (x * z - w * y)
+    out[:, 2, 1] = 2 * (y * z + w * x)
+    out[:, 2, 2] = 1 - 2 * (x * x + y * y)
+    return out
+
+
+def _contact_forces_world(m: mujoco.MjModel, d: mujoco.MjData) -> np.ndarray:
+    """Force of every contact on its geom2 in the world frame, (ncon, 3), decoded from the solver rows.
+
+    Vectorised for condim 3 (pyramidal: 4 edge rows, normal = their sum, tangent i = mu_i (f_2i - f_2i+1);
+    elliptic: the rows are the normal and tangential components); other cases use mj_contactForce.
+    """
+    contact = d.contact
+    n = d.ncon
+    adr, dim = contact.efc_address, contact.dim
+    local = np.zeros((n, 3))
+    three = (adr >= 0) & (dim == 3)
+    if m.opt.cone == mujoco.mjtCone.mjCONE_PYRAMIDAL:
+        rows = d.efc_force[adr[three, None] + np.arange(4)]
+        mu = contact.friction[three, :2]
+        local[three, 0] = rows.sum(axis=1)
+        local[three, 1] = mu[:, 0] * (rows[:, 0] - rows[:, 1])
+        local[three, 2] = mu[:, 1] * (rows[:, 2] - rows[:, 3])
+    else:
+        local[three] = d.efc_force[adr[three, None] + np.arange(3)]
+    buffer = np.zeros(6)
+    for i in np.nonzero((adr >= 0) & (dim != 3))[0]:
+        mujoco.mj_contactForce(m, d, int(i), buffer)
+        local[i] = buffer[:3]
+    frame = contact.frame.reshape(n, 3, 3)     # rows: normal, tangent1, tangent2
+    return np.einsum("ni,nij->nj", local, frame)
+
+
+def _save_state(d: mujoco.MjData) -> tuple[np.ndarray, ...]:
+    return (d.qpos.copy(), d.qvel.copy(), d.qacc_warmstart.copy(), np.array([d.time]))
+
+
+def _restore_state(d: mujoco.MjData, saved: tuple[np.ndarray, ...]) -> None:
+    d.qpos[:], d.qvel[:], d.qacc_warmstart[:] = saved[0], saved[1], saved[2]
+    d.time = float(saved[3][0])
