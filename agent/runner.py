@@ -1,0 +1,185 @@
+"""TCP transport for one agent: connect, frame, call ``Agent.step``, answer, reconnect; ``python -m agent``.
+
+Everything stateful about the game lives in :class:`~agent.agent.Agent`; this module owns only the socket,
+the retry policy and the log. Policy:
+
+* connecting: ``connect_attempts`` tries with exponential backoff (``backoff_s`` doubling up to
+  ``backoff_max_s``); none answering raises :class:`~agent.errors.ServerUnreachable` (exit code 2 from the CLI);
+* a lost connection (closed, reset, silent for ``read_timeout_s``, a broken length prefix) starts a fresh
+  Agent on a new connection, at most ``max_reconnects`` times;
+* a malformed sense message is logged and counted, answered with ``(syn)`` (the server waits for it in sync
+  mode), and the agent goes on with the next one.
+"""
+
+from __future__ import annotations
+
+import argparse
+import logging
+import socket
+import sys
+import threading
+import time
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+
+from agent.agent import Agent, AgentConfig
+from agent.errors import ConfigError, ServerUnreachable
+from agent.localization import DEFAULT_LOCALIZER, LOCALIZERS
+from agent.protocol.errors import ProtocolError
+from agent.protocol.framing import read_frame, write_frame
+
+logger = logging.getLogger(__name__)
+
+DEFAULT_HOST = "127.0.0.1"
+DEFAULT_PORT = 3100
+SYN_ONLY = b"(syn)"
+
+
+@dataclass(frozen=True)
+class ConnectionPolicy:
+    """Retry and timeout settings of the transport."""
+
+    connect_attempts: int = 5
+    """Connection attempts before giving up."""
+    backoff_s: float = 0.5
+    """Wait after the first failed attempt [s]; doubles each time."""
+    backoff_max_s: float = 4.0
+    """Longest wait between attempts [s]."""
+    read_timeout_s: float = 10.0
+    """A server silent this long counts as lost [s]."""
+    max_reconnects: int = 3
+    """New connections after a lost one before giving up."""
+
+
+@dataclass
+class RunStats:
+    """What happened during :func:`run`."""
+
+    connections: int = 0
+    cycles: int = 0
+    bad_messages: int = 0
+    lost_connections: int = 0
+
+
+def connect(host: str, port: int, policy: ConnectionPolicy, stop: threading.Event | None = None) -> socket.socket:
+    """A connected TCP socket, after up to ``policy.connect_attempts`` tries with backoff.
+
+    Raises:
+        ServerUnreachable: no attempt succeeded.
+    """
+    wait = policy.backoff_s
+    error: OSError | None = None
+    for attempt in range(1, policy.connect_attempts + 1):
+        try:
+            sock = socket.create_connection((host, port), timeout=policy.read_timeout_s)
+            sock.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
+            return sock
+        except OSError as exc:
+            error = exc
+            logger.info("connect to %s:%d failed (attempt %d/%d): %s", host, port, attempt,
+                        policy.connect_attempts, exc)
+        if attempt < policy.connect_attempts:
+            if stop is not None and stop.wait(wait):
+                break
+            if stop is None:
+                time.sleep(wait)
+            wait = min(wait * 2.0, policy.backoff_max_s)
+    raise ServerUnreachable(f"no server answered at {host}:{port} after {policy.connect_attempts} attempt(s)"
+                            f" (last error: {error})", policy.connect_attempts)
+
+
+def serve(sock: socket.socket, agent: Agent, stats: RunStats, stop: threading.Event | None = None) -> None:
+    """Play one connection until the server closes it or ``stop`` is set.
+
+    Raises:
+        OSError: the socket failed or timed out.
+        ProtocolError: the frame stream broke (a truncated frame or an absurd length prefix).
+    """
+    write_frame(sock, agent.connect_message())
+    while stop is None or not stop.is_set():
+        payload = read_frame(sock)
+        if payload is None:
+            return
+        try:
+            reply = agent.step(payload)
+        except ProtocolError as error:
+            stats.bad_messages += 1
+            logger.warning("skipped malformed sense message %d: %s", stats.cycles, error)
+            reply = SYN_ONLY
+        stats.cycles += 1
+        write_frame(sock, reply)
+
+
+def run(config: AgentConfig, host: str = DEFAULT_HOST, port: int = DEFAULT_PORT,
+        policy: ConnectionPolicy | None = None, stop: threading.Event | None = None,
+        make_agent: Callable[[AgentConfig], Agent] = Agent) -> RunStats:
+    """Connect and play until the server goes away for good or ``stop`` is set.
+
+    Raises:
+        ServerUnreachable: no server at the start, or none came back after a lost connection.
+    """
+    policy = policy or ConnectionPolicy()
+    stats = RunStats()
+    reconnects = 0
+    while True:
+        sock = connect(host, port, policy, stop)
+        stats.connections += 1
+        logger.info("connected to %s:%d as %s #%d (type %d)", host, port, config.team, config.unum,
+                    config.robot_type)
+        try:
+            with sock:
+                serve(sock, make_agent(config), stats, stop)
+            reason = "closed by the server"
+        except (OSError, ProtocolError) as error:
+            reason = str(error) or type(error).__name__
+        if stop is not None and stop.is_set():
+            return stats
+        stats.lost_connections += 1
+        reconnects += 1
+        if reconnects > policy.max_reconnects:
+            raise ServerUnreachable(f"connection to {host}:{port} lost ({reason}) and {policy.max_reconnects} "
+                                    "reconnection(s) used up", stats.connections)
+        logger.warning("connection to %s:%d lost (%s); reconnecting (%d/%d)", host, port, reason, reconnects,
+                       policy.max_reconnects)
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The usual rcssserver3d agent flags."""
+    parser = argparse.ArgumentParser(prog="python -m agent", description="Run one Nao soccer agent over TCP.")
+    parser.add_argument("--host", default=DEFAULT_HOST, help="server address (default 127.0.0.1)")
+    parser.add_argument("--port", type=int, default=DEFAULT_PORT, help="agent port (default 3100)")
+    parser.add_argument("--team", default="Nao3D", help="team name (default Nao3D)")
+    parser.add_argument("--unum", type=int, default=0, help="uniform number 1-11, 0 = next free (default 0)")
+    parser.add_argument("--type", dest="robot_type", type=int, default=0, help="robot type 0-4 (default 0)")
+    parser.add_argument("--localization", default=DEFAULT_LOCALIZER, choices=sorted(LOCALIZERS),
+                        help=f"self-localization method (default {DEFAULT_LOCALIZER})")
+    parser.add_argument("--attempts", type=int, default=ConnectionPolicy.connect_attempts,
+                        help="connection attempts before giving up (default 5)")
+    parser.add_argument("--log-level", default="INFO", help="logging level (default INFO)")
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """CLI entry: returns the process exit code (0 done, 2 bad options or no server)."""
+    args = build_parser().parse_args(argv)
+    logging.basicConfig(level=args.log_level.upper(), format="%(asctime)s %(levelname)s %(name)s: %(message)s")
+    return run_cli(args.host, args.port, args.team, args.unum, args.robot_type, args.localization, args.attempts)
+
+
+def run_cli(host: str, port: int, team: str, unum: int, robot_type: int, localization: str = DEFAULT_LOCALIZER,
+            attempts: int = ConnectionPolicy.connect_attempts) -> int:
+    """Run with user-facing error handling: a clear message on stderr and a non-zero code on failure."""
+    try:
+        config = AgentConfig(team=team, unum=unum, robot_type=robot_type, localization=localization)
+        stats = run(config, host, port, ConnectionPolicy(connect_attempts=max(1, attempts)))
+    except ConfigError as error:
+        print(f"agent: bad option {error.field}: {error}", file=sys.stderr)
+        return 2
+    except ServerUnreachable as error:
+        print(f"agent: {error}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        return 130
+    print(f"agent: done after {stats.cycles} cycles ({stats.bad_messages} malformed messages skipped)",
+          file=sys.stderr)
+    return 0

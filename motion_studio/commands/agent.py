@@ -1,0 +1,27 @@
+"""``motion-studio agent``: run one soccer agent against a server (same as ``python -m agent``)."""
+
+from __future__ import annotations
+
+from typing import Annotated
+
+import typer
+
+from motion_studio.cli import app
+
+
+@app.command("agent")
+def agent_command(
+    host: Annotated[str, typer.Option(help="server address")] = "127.0.0.1",
+    port: Annotated[int, typer.Option(help="agent port")] = 3100,
+    team: Annotated[str, typer.Option(help="team name")] = "Nao3D",
+    unum: Annotated[int, typer.Option(help="uniform number 1-11, 0 = next free")] = 0,
+    robot_type: Annotated[int, typer.Option("--type", help="robot type 0-4")] = 0,
+    localization: Annotated[str, typer.Option(help="self-localization: ekf or seed")] = "ekf",
+    attempts: Annotated[int, typer.Option(help="connection attempts before giving up")] = 5,
+) -> None:
+    """Connect to HOST:PORT, join TEAM as UNUM and play until the server goes away."""
+    from agent.runner import run_cli
+
+    code = run_cli(host, port, team, unum, robot_type, localization, attempts)
+    if code:
+        raise typer.Exit(code)
