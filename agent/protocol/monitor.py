@@ -78,7 +78,7 @@ def parse_monitor(data: bytes | str, *, parse_scene: bool = True) -> MonitorMess
     scene_offset = len(text) - len(scene_text)
     scene = None
     if parse_scene:
-        expressions = parse_sexpr(scene_text)
+        expressions = parse_sexpr(text, scene_offset)
         if len(expressions) != 1:
             raise ProtocolError.at(f"expected one scene-graph expression, got {len(expressions)}", text,
                                    scene_offset)

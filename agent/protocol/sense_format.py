@@ -73,8 +73,9 @@ def _server_layout(sense: Sense) -> tuple[list[str], list[ForceResistance]]:
     return order, frps
 
 
-_ATOM = r"[!-'*-~]+"
-_ATOM_LIST = re.compile(rf"{_ATOM}(?: {_ATOM})*")
+_ATOM_TEXT = r"[!-'*-~]+"
+_ATOM = re.compile(_ATOM_TEXT)
+_ATOM_LIST = re.compile(rf"{_ATOM_TEXT}(?: {_ATOM_TEXT})*")
 
 
 def format_sense(sense: Sense) -> bytes:
@@ -130,8 +131,9 @@ def format_sense(sense: Sense) -> bytes:
             atoms.append(sense.acc.name)  # type: ignore[union-attr]
         else:
             out.append(_format_agent_state(sense.agent_state))  # type: ignore[arg-type]
-    if atoms and _ATOM_LIST.fullmatch(" ".join(atoms)) is None:
-        bad = next(atom for atom in atoms if _ATOM_LIST.fullmatch(atom) is None)
+    joined = " ".join(atoms)  # one regex call for all names; the space count catches "a b" as one name
+    if atoms and (_ATOM_LIST.fullmatch(joined) is None or joined.count(" ") != len(atoms) - 1):
+        bad = next(atom for atom in atoms if _ATOM.fullmatch(atom) is None)
         written = "".join(out)
         offset = written.find(bad) if bad else len(written)
         raise ProtocolError.at(f"{bad!r} is not a valid atom (empty, or holds a space or parenthesis)",

@@ -56,10 +56,11 @@ def ascii_text(data: bytes | str) -> str:
     return data if isinstance(data, str) else data.decode("ascii")
 
 
-def parse_sexpr(data: bytes | str) -> list[SExpr]:
-    """All top-level expressions of ``data``, as nested lists of ``str`` atoms.
+def parse_sexpr(data: bytes | str, start: int = 0) -> list[SExpr]:
+    """All top-level expressions of ``data[start:]``, as nested lists of ``str`` atoms.
 
-    Example: ``b"(time (now 1.00))(syn)"`` -> ``[["time", ["now", "1.00"]], ["syn"]]``.
+    Example: ``b"(time (now 1.00))(syn)"`` -> ``[["time", ["now", "1.00"]], ["syn"]]``. Error offsets are
+    offsets into the whole ``data``.
 
     Raises:
         ProtocolError: a byte outside printable ASCII and separators, an atom outside a list, a ``)``
@@ -69,7 +70,7 @@ def parse_sexpr(data: bytes | str) -> list[SExpr]:
     root: list[SExpr] = []
     stack: list[SExpr] = []
     current: SExpr = root  # type: ignore[assignment]
-    for token in _TOKEN.findall(text):
+    for token in _TOKEN.findall(text, start):
         if token == "(":
             child: SExpr = []
             current.append(child)
@@ -77,14 +78,14 @@ def parse_sexpr(data: bytes | str) -> list[SExpr]:
             current = child
         elif token == ")":
             if not stack:
-                raise _locate_error(text)
+                raise _locate_error(text, start)
             current = stack.pop()
         elif current is root:
-            raise _locate_error(text)
+            raise _locate_error(text, start)
         else:
             current.append(token)
     if stack:
-        raise _locate_error(text)
+        raise _locate_error(text, start)
     return root
 
 
@@ -139,10 +140,10 @@ def read_located(text: str, start: int = 0, limit: int | None = None) -> tuple[l
     return root, end
 
 
-def _locate_error(text: str) -> ProtocolError:
-    """The located error for ``text``, which the fast reader found malformed (re-read slowly for offsets)."""
+def _locate_error(text: str, start: int) -> ProtocolError:
+    """The located error for ``text[start:]``, which the fast reader found malformed (re-read for offsets)."""
     try:
-        read_located(text)
+        read_located(text, start)
     except ProtocolError as error:
         return error
     raise AssertionError("fast and located readers disagree")  # pragma: no cover
