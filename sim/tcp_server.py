@@ -109,6 +109,7 @@ class ServerStats:
     monitor_frames: int = 0
     engine_errors: int = 0
     sync_timeouts: int = 0
+    loop_errors: int = 0
 
 
 class SimServer:
@@ -225,21 +226,32 @@ class SimServer:
         next_step = time.monotonic()
         try:
             while not self._stop.is_set():
-                now = time.monotonic()
-                if self._may_step(now, next_step):
-                    self._cycle()
-                    now = time.monotonic()
-                    if self.real_time or not self._agents:
-                        # Without agents nothing paces sync mode: keep 50 Hz instead of spinning a core.
-                        next_step = max(next_step + CYCLE_S, now - CYCLE_S)
-                    else:
-                        next_step = now
-                    self._poll(0.0)
-                else:
-                    self._poll(self._wait_time(now, next_step))
+                try:
+                    next_step = self._iterate(next_step)
+                except Exception:  # last resort: a bug in the loop must not end the server
+                    self.stats.loop_errors += 1
+                    logger.exception("server loop error (continuing)")
+                    time.sleep(0.01)
         finally:
             self._running = False
             self._close_all()
+
+    def _iterate(self, next_step: float) -> float:
+        """One pass of the loop: step if the mode allows it, else wait for sockets; returns the next
+        step time."""
+        now = time.monotonic()
+        if not self._may_step(now, next_step):
+            self._poll(self._wait_time(now, next_step))
+            return next_step
+        self._cycle()
+        now = time.monotonic()
+        if self.real_time or not self._agents:
+            # Without agents nothing paces sync mode: keep 50 Hz instead of spinning a core.
+            next_step = max(next_step + CYCLE_S, now - CYCLE_S)
+        else:
+            next_step = now
+        self._poll(0.0)
+        return next_step
 
     def _may_step(self, now: float, next_step: float) -> bool:
         paced = self.real_time or not self._agents
@@ -300,15 +312,15 @@ class SimServer:
             self._send_monitors()
 
     def _send_percepts(self) -> None:
-        if not self._pending:
+        pending, self._pending = self._pending, {}  # sending may drop a client, which edits _pending
+        if not pending:
             return
         by_id = {agent.agent_id: agent for agent in self._agents.values()}
-        for agent_id, payload in self._pending.items():
+        for agent_id, payload in pending.items():
             agent = by_id.get(agent_id)
-            if agent is not None:
+            if agent is not None and not agent.closed:
                 agent.cycles += 1
                 self._queue(agent, frame(payload))
-        self._pending = {}
 
     def _send_monitors(self) -> None:
         if self.monitor is None or not self._monitors:
@@ -385,6 +397,9 @@ class SimServer:
         try:
             data = client.sock.recv(_RECV_BYTES)
         except (BlockingIOError, InterruptedError):
+            return
+        except ConnectionResetError:
+            self._drop(client, "connection reset by the peer", level=logging.INFO)
             return
         except OSError as error:
             self._drop(client, f"receive failed: {error}")
