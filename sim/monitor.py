@@ -212,6 +212,40 @@ def snapshot_of(world: SceneSource, referee: RefereeLike) -> SceneSnapshot:
     return SceneSnapshot(game_view(referee), pose_matrix(position, rotation), robots)
 
 
+class MujocoWorldScene:
+    """`SceneSource` over sim.world.World, reading body poses from its compiled model and data.
+
+    Used until the world offers ``ball_pose``/``robot_body_poses`` itself; body frames of the generated
+    model are SimSpark's (body centre, axes x right / y forward / z up at zero pose), so ``xpos``/``xmat``
+    are exactly the transforms the server sends.
+    """
+
+    def __init__(self, world: object) -> None:
+        self.world = world
+        self._model_id = 0
+        self._ids: dict[int, list[tuple[str, int]]] = {}
+
+    def ball_pose(self) -> tuple[tuple[float, float, float], tuple[float, ...]]:
+        w = self.world
+        body = w.ball_body  # type: ignore[attr-defined]
+        return tuple(w.data.xpos[body]), tuple(w.data.xmat[body])  # type: ignore[attr-defined,return-value]
+
+    def robot_body_poses(self) -> list[tuple[str | None, int, int, dict[str, tuple[tuple[float, float, float],
+                                                                                tuple[float, ...]]]]]:
+        w = self.world
+        model, data = w.model, w.data  # type: ignore[attr-defined]
+        if id(model) != self._model_id:  # robots joined or left: the model was recompiled
+            self._model_id = id(model)
+            self._ids.clear()
+        out = []
+        for robot in w.by_key.values():  # type: ignore[attr-defined]
+            if robot.key not in self._ids:
+                self._ids[robot.key] = [(b.name, model.body(robot.prefix + b.name).id) for b in robot.spec.bodies]
+            bodies = {name: (tuple(data.xpos[i]), tuple(data.xmat[i])) for name, i in self._ids[robot.key]}
+            out.append((robot.side, robot.unum or 0, robot.robot_type, bodies))
+        return out
+
+
 class WorldMonitorFeed:
     """The TCP server's monitor feed: one snapshot per monitor step, one stream per connection.
 
@@ -280,5 +314,5 @@ class MonitorLogWriter:
             self._out.close()
 
 
-__all__ = ["GameView", "IDENTITY", "MonitorLogWriter", "MonitorStream", "RobotView", "SceneSnapshot",
+__all__ = ["GameView", "IDENTITY", "MonitorLogWriter", "MonitorStream", "MujocoWorldScene", "RobotView", "SceneSnapshot",
            "WorldMonitorFeed", "environment_predicates", "game_view", "snapshot_of"]

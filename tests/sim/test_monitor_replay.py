@@ -83,3 +83,34 @@ def test_replay_of_a_log_without_full_state_is_an_error(tmp_path: Path) -> None:
     with pytest.raises(ValueError, match="no full-state"):
         replay_log(log, html_out=tmp_path / "x.html")
     assert np.isfinite(0.0)
+
+
+def test_log_of_the_real_world_reads_back_with_the_body_poses(tmp_path: Path) -> None:
+    from sim.monitor import MujocoWorldScene, snapshot_of
+    from sim.referee import Referee
+    from sim.world import World
+
+    world, referee = World(), Referee(seed=0)
+    world.add_robot(1, 4)
+    assignment = referee.on_init("Toes", 0, robot_type=4)
+    world.set_team(1, assignment.side, assignment.unum)
+    world.place_robot(1, -3.0, 1.0, 30.0, 0.4)
+    world.end_cycle()
+    scene = MujocoWorldScene(world)
+    log = tmp_path / "world.log"
+    with open(log, "w") as out:
+        writer = MonitorLogWriter(out, lambda: snapshot_of(scene, referee))
+        for cycle in range(20):
+            world.begin_cycle()
+            world.step()
+            referee.update(world)
+            world.end_cycle()
+            writer.on_cycle(cycle)
+    frames = list(read_log(log))
+    robot = frames[-1].robots["left_1"]
+    assert robot.robot_type == 4 and set(robot.bodies) == set(robot_body_order(4))
+    m, d = world.model, world.data
+    for body in ("torso", "head", "ltoe", "rfoot"):
+        index = m.body("r1_" + body).id
+        assert robot.bodies[body][:3, 3] == pytest.approx(d.xpos[index], abs=0.006)
+        assert robot.bodies[body][:3, :3] == pytest.approx(d.xmat[index].reshape(3, 3), abs=0.006)
