@@ -519,3 +519,61 @@ class SimServer:
             except OSError:
                 pass
         self._selector.close()
+
+
+# ---- a complete simulation over TCP --------------------------------------------------------------------
+@dataclass(frozen=True)
+class ServeOptions:
+    """What `motion-studio serve` sets: bind address, ports (monitor None = none), modes, seed, log file.
+
+    log_step_cycles: cycles between log lines (2 = every monitor frame).
+    """
+
+    host: str = DEFAULT_HOST
+    agent_port: int = DEFAULT_AGENT_PORT
+    monitor_port: int | None = DEFAULT_MONITOR_PORT
+    sync: bool = True
+    real_time: bool = False
+    seed: int | None = None
+    log_path: str | None = None
+    log_step_cycles: int = 2
+    sync_timeout_s: float | None = None
+
+
+def build_simulation_server(options: ServeOptions, engine: object | None = None) -> tuple[SimServer, Callable[[], None]]:
+    """The simulator behind a `SimServer`: engine, monitor feed, trainer commands and the log writer.
+
+    Args:
+        options: see `ServeOptions`.
+        engine: an engine with ``world`` and ``referee`` attributes (a new ``sim.engine.SimEngine`` if None).
+
+    Returns:
+        The bound server (ports known) and a function that closes the log; call it after the server stops.
+    """
+    from sim.monitor import MonitorLogWriter, MujocoWorldScene, WorldMonitorFeed, snapshot_of
+    from sim.rules.trainer import apply_trainer_message
+
+    if engine is None:
+        from sim.engine import SimEngine
+
+        engine = SimEngine(seed=options.seed)
+    world, referee = engine.world, engine.referee  # type: ignore[attr-defined]
+    scene = MujocoWorldScene(world)
+
+    def snapshot():
+        return snapshot_of(scene, referee)
+
+    def trainer(payload: bytes) -> None:
+        try:
+            apply_trainer_message(payload, referee, world)
+        except ProtocolError as error:
+            logger.warning("trainer message rejected: %s", error)
+
+    writer = MonitorLogWriter(options.log_path, snapshot, options.log_step_cycles) if options.log_path else None
+    server = SimServer(engine, host=options.host, agent_port=options.agent_port,  # type: ignore[arg-type]
+                       monitor_port=options.monitor_port, sync=options.sync, real_time=options.real_time,
+                       monitor=WorldMonitorFeed(snapshot), trainer=trainer,
+                       on_cycle=writer.on_cycle if writer is not None else None,
+                       sync_timeout_s=options.sync_timeout_s)
+    server.bind()
+    return server, (writer.close if writer is not None else (lambda: None))
