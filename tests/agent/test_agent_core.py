@@ -1,0 +1,115 @@
+"""The pure core: connection sequence (scene, init, beam once), syn every cycle, bad input, say slots, purity."""
+
+from __future__ import annotations
+
+import math
+import subprocess
+import sys
+
+import pytest
+
+from agent import Agent, AgentConfig
+from agent.communication import decode
+from agent.errors import ConfigError
+from agent.formation import FORMATIONS, beam_spot
+from agent.protocol import ProtocolError, parse_actions
+from agent.protocol.effectors import Beam, Init, Say, Scene, Syn
+from tests.agent import synthetic_world as synth
+from tests.agent.protocol_samples import records
+
+
+def left_sample():
+    return [str(r["msg"]).encode() for r in records() if r["k"] == "recv" and r["a"] == "L"]
+
+
+def run(agent, messages):
+    return [parse_actions(agent.step(m)) for m in messages]
+
+
+def test_connect_message_is_the_hetero_scene():
+    agent = Agent(AgentConfig("Mine", 4, robot_type=3))
+    assert parse_actions(agent.connect_message()) == [Scene("rsg/agent/nao/nao_hetero.rsg", 3)]
+
+
+def test_real_sample_init_first_beam_once_syn_always():
+    outputs = run(Agent(AgentConfig("CapL", 1)), left_sample())
+    assert all(actions[-1] == Syn() for actions in outputs)
+    assert outputs[0][0] == Init(1, "CapL")
+    beams = [(i, a) for i, actions in enumerate(outputs) for a in actions if isinstance(a, Beam)]
+    # One beam, as soon as the server confirmed unum and side (3rd message), to the goalkeeper spot.
+    assert [i for i, _ in beams] == [2]
+    spot = beam_spot(1)
+    assert beams[0][1] == Beam(spot.x_m, spot.y_m, spot.rot_deg)
+    assert sum(isinstance(a, Init) for actions in outputs for a in actions) == 1
+
+
+def _sense(now, mode, unum=None, side=None):
+    return synth.sense_bytes(now, play_mode=mode, unum=unum, side=side)
+
+
+def test_beam_again_after_a_goal_never_in_play_on():
+    agent = Agent(AgentConfig("Mine", 7))
+    modes = ["BeforeKickOff"] * 5 + ["KickOff_Left"] * 3 + ["PlayOn"] * 5 + ["Goal_Left"] * 5 + ["PlayOn"] * 3
+    beams = []
+    for i, mode in enumerate(modes):
+        actions = parse_actions(agent.step(_sense(1.0 + 0.02 * i, mode, 7 if i == 1 else None,
+                                                  "left" if i == 1 else None)))
+        beams += [(mode, a) for a in actions if isinstance(a, Beam)]
+    assert [mode for mode, _ in beams] == ["BeforeKickOff", "Goal_Left"]
+
+
+def test_malformed_message_raises_and_changes_nothing():
+    agent = Agent(AgentConfig("Mine", 2))
+    agent.step(_sense(1.0, "BeforeKickOff", 2, "left"))
+    before = (agent.world.game.cycles, agent.world.now_s)
+    with pytest.raises(ProtocolError):
+        agent.step(b"(time (now 1.02))(GS (t 0.00) (pm PlayOn)")
+    assert (agent.world.game.cycles, agent.world.now_s) == before
+    assert parse_actions(agent.step(_sense(1.04, "BeforeKickOff")))[-1] == Syn()
+
+
+def test_step_is_a_pure_function_of_the_messages():
+    messages = left_sample()
+    a, b = Agent(AgentConfig("CapL", 1)), Agent(AgentConfig("CapL", 1))
+    outputs = [a.step(m) for m in messages]
+    assert outputs == [b.step(m) for m in messages]
+    assert len(set(outputs)) > 3  # not trivially constant
+
+
+def test_says_only_in_its_own_slot_and_decodably():
+    agent = Agent(AgentConfig("Mine", 4))
+    said = []
+    for i in range(80):
+        actions = parse_actions(agent.step(_sense(30.0 + 0.02 * i, "BeforeKickOff", 4 if i == 0 else None,
+                                                  "left" if i == 0 else None)))
+        said += [(i, a.message) for a in actions if isinstance(a, Say)]
+    assert said, "unum 4 has a slot every 33 cycles"
+    cycles = [i for i, _ in said]
+    assert all(b - a == 33 for a, b in zip(cycles, cycles[1:]))
+    assert decode(said[0][1], "Mine").kind == "i"
+    assert decode(said[1][1], "Mine").kind == "x"  # no vision in these messages: lost
+
+
+def test_config_errors_name_the_option():
+    for kwargs, field in [({"unum": 12}, "unum"), ({"robot_type": 5}, "type"), ({"team": "a b"}, "team"),
+                          ({"localization": "magic"}, "localization")]:
+        with pytest.raises(ConfigError) as info:
+            AgentConfig(**{"team": "Mine", **kwargs})
+        assert info.value.field == field
+    with pytest.raises(ConfigError, match="thesis"):
+        beam_spot(3, "diamond")
+
+
+@pytest.mark.parametrize("unum", range(1, 12))
+def test_every_beam_spot_is_legal(unum):
+    spot = FORMATIONS["thesis"][unum]
+    assert -15.0 <= spot.x_m <= 0.0 and -10.0 <= spot.y_m <= 10.0
+    assert math.hypot(spot.x_m, spot.y_m) > 2.0  # outside the centre circle at kick-off
+
+
+def test_agent_imports_no_mujoco():
+    code = \
+        "import sys, agent, agent.runner\nprint('mujoco' in sys.modules)"
+    result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.strip() == "False"
