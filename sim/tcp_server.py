@@ -447,6 +447,8 @@ class SimServer:
             return
         try:
             self.trainer(payload)
+        except ProtocolError as error:
+            logger.warning("trainer message from %s rejected: %s", monitor.peer, error)
         except Exception:
             logger.exception("trainer command from %s failed: %r", monitor.peer, payload[:80])
 

@@ -260,3 +260,35 @@ def test_stop_closes_the_ports(server_factory) -> None:
     server.stop()
     with pytest.raises(OSError):
         socket.create_connection(("127.0.0.1", port), timeout=1.0)
+
+
+def test_monitor_port_streams_full_state_then_diffs_and_takes_trainer_commands(server_factory) -> None:
+    from sim.monitor import GameView, SceneSnapshot, WorldMonitorFeed
+    from sim.referee import Referee
+    from sim.rules.trainer import apply_trainer_message
+    from tests.sim.test_referee_rules import FakeWorld
+
+    referee, world = Referee(seed=0), FakeWorld()
+
+    def snapshot() -> SceneSnapshot:
+        return SceneSnapshot(GameView(time_s=referee.game_time_s, play_mode_index=referee.play_mode_index))
+
+    server = server_factory(sync=True, real_time=True, monitor_port=0, monitor=WorldMonitorFeed(snapshot),
+                            trainer=lambda payload: apply_trainer_message(payload, referee, world))
+    monitor = Client(server.monitor_port)
+    first = monitor.recv()
+    assert first.startswith(b"((FieldLength 30)") and b"(RSG 0 1)" in first
+    assert b"(RDS 0 1)" in monitor.recv()
+    monitor.send(b"(playMode PlayOn)")
+    deadline = time.monotonic() + 5.0
+    while b"(play_mode 3)" not in monitor.recv():
+        assert time.monotonic() < deadline
+    monitor.send(b"(reqfullstate)")
+    while b"(RSG 0 1)" not in monitor.recv():
+        assert time.monotonic() < deadline
+    monitor.send(b"(kickOff Left")  # broken: logged, ignored
+    monitor.send(b"(killsim)")
+    monitor.sock.settimeout(5.0)
+    with pytest.raises((ConnectionError, OSError)):
+        for _ in range(200):
+            monitor.recv()
