@@ -118,17 +118,23 @@ class EkfLocalizer:
     # --- correct ---------------------------------------------------------------------------------------
     def _scalar_update(self, residual: float, h: tuple[float, float, float], variance: float) -> bool:
         """One scalar measurement z - h(x) = residual with Jacobian h; False if the gate rejected it."""
-        p = self.cov
-        ph = [p[i][0] * h[0] + p[i][1] * h[1] + p[i][2] * h[2] for i in range(3)]
-        s = h[0] * ph[0] + h[1] * ph[1] + h[2] * ph[2] + variance
-        if residual * residual / s > self.config["gate_chi2"]:
+        (p00, p01, p02), (p10, p11, p12), (p20, p21, p22) = self.cov
+        h0, h1, h2 = h
+        ph0 = p00 * h0 + p01 * h1 + p02 * h2
+        ph1 = p10 * h0 + p11 * h1 + p12 * h2
+        ph2 = p20 * h0 + p21 * h1 + p22 * h2
+        s = h0 * ph0 + h1 * ph1 + h2 * ph2 + variance
+        if residual * residual > self.config["gate_chi2"] * s:
             return False
-        k = [v / s for v in ph]
+        k0, k1, k2 = ph0 / s, ph1 / s, ph2 / s
         st = self.state
-        st[0] += k[0] * residual  # type: ignore[index]
-        st[1] += k[1] * residual  # type: ignore[index]
-        st[2] = wrap_angle_rad(st[2] + k[2] * residual)  # type: ignore[index]
-        self.cov = [[p[i][j] - k[i] * ph[j] for j in range(3)] for i in range(3)]
+        st[0] += k0 * residual  # type: ignore[index]
+        st[1] += k1 * residual  # type: ignore[index]
+        st[2] = wrap_angle_rad(st[2] + k2 * residual)  # type: ignore[index]
+        # P - K (P h)^T; P stays symmetric because P h is the column P·h.
+        self.cov = [[p00 - k0 * ph0, p01 - k0 * ph1, p02 - k0 * ph2],
+                    [p10 - k1 * ph0, p11 - k1 * ph1, p12 - k1 * ph2],
+                    [p20 - k2 * ph0, p21 - k2 * ph1, p22 - k2 * ph2]]
         return True
 
     def _start(self, pose: Pose2D) -> None:
@@ -185,31 +191,36 @@ class EkfLocalizer:
 
     def _line_updates(self, frame: VisionFrame) -> None:
         c = self.config
+        sin_max = math.sin(c["line_match_rad"])
+        match_m = c["line_match_m"]
         for (af, al), (bf, bl) in frame.lines:
-            if math.hypot(bf - af, bl - al) < c["line_min_length_m"]:
+            length = math.hypot(bf - af, bl - al)
+            if length < c["line_min_length_m"]:
                 continue
             x, y, th = self.state  # type: ignore[misc]
             cs, sn = math.cos(th), math.sin(th)
-            ends = [(x + cs * f - sn * l, y + sn * f + cs * l, f, l) for f, l in ((af, al), (bf, bl))]
-            sx, sy = ends[1][0] - ends[0][0], ends[1][1] - ends[0][1]
-            seen_angle = math.atan2(sy, sx)
+            ax, ay = x + cs * af - sn * al, y + sn * af + cs * al
+            bx, by = x + cs * bf - sn * bl, y + sn * bf + cs * bl
+            dx, dy = (bx - ax) / length, (by - ay) / length
             best, best_cost = None, math.inf
-            for line in self._lines:
+            for line in self._lines:  # cheapest tests first: this loop runs ~20 x 20 times per frame
                 ux, uy, nx, ny, offset, lo, hi = line
-                angle = abs(wrap_angle_rad(2.0 * (seen_angle - math.atan2(uy, ux)))) / 2.0
-                if angle > c["line_match_rad"]:
+                sin_angle = abs(dx * uy - dy * ux)
+                if sin_angle > sin_max:
                     continue
-                dists = [abs(nx * px + ny * py - offset) for px, py, _, _ in ends]
-                along = [ux * px + uy * py for px, py, _, _ in ends]
-                if max(dists) > c["line_match_m"] or min(along) < lo - 0.5 or max(along) > hi + 0.5:
+                da, db = abs(nx * ax + ny * ay - offset), abs(nx * bx + ny * by - offset)
+                if da > match_m or db > match_m:
                     continue
-                cost = sum(dists) + angle
+                ta, tb = ux * ax + uy * ay, ux * bx + uy * by
+                if min(ta, tb) < lo - 0.5 or max(ta, tb) > hi + 0.5:
+                    continue
+                cost = da + db + sin_angle
                 if cost < best_cost:
                     best, best_cost = line, cost
             if best is None:
                 continue
             _, _, nx, ny, offset, _, _ = best
-            for _, _, f, l in ends:
+            for f, l in ((af, al), (bf, bl)):
                 x, y, th = self.state  # type: ignore[misc]
                 cs, sn = math.cos(th), math.sin(th)
                 px, py = x + cs * f - sn * l, y + sn * f + cs * l
