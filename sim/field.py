@@ -55,20 +55,23 @@ def _centre_circle_chords() -> list[tuple[tuple[float, float], tuple[float, floa
 
 
 def field_lines() -> np.ndarray:
-    """The 21 field-line segments (REFERENCE §4.1), shape (21, 2, 3), z = 0.
+    """The 21 field-line segments (REFERENCE §4.1) in the server's order and direction, shape (21, 2, 3).
 
-    Order: touch lines, goal lines, halfway line, penalty areas (left then right: front line, then the two
-    side lines), centre-circle chords counter-clockwise from (2, 0). Endpoints are derived from the
-    dimensions (not checked against the server's line rsg; REFERENCE marks them so).
+    Order and endpoint direction were read off the recorded 0.7.3 vision (tests/sim/test_vision.py fits
+    the camera pose to the landmarks and matches every reported line): halfway line (y -10 -> 10), goal
+    lines x = +15 then x = -15 (y -10 -> 10), touch lines y = +10 then y = -10 (x +15 -> -15), the right
+    penalty area (front line y +3 -> -3, then the sides y = +3 and y = -3, from x = 13.2 to the goal line),
+    the left one likewise (which area comes first is not in the samples: unverified), then the centre
+    circle as 10 chords counter-clockwise from (2, 0). Endpoints are derived from the dimensions.
     """
     hl, hw, px = HALF_LENGTH_M, HALF_WIDTH_M, HALF_LENGTH_M - PENALTY_DEPTH_M
     py = PENALTY_HALF_WIDTH_M
     segments: list[tuple[tuple[float, float], tuple[float, float]]] = [
-        ((-hl, hw), (hl, hw)), ((-hl, -hw), (hl, -hw)),
-        ((-hl, -hw), (-hl, hw)), ((hl, -hw), (hl, hw)),
         ((0.0, -hw), (0.0, hw)),
-        ((-px, -py), (-px, py)), ((-hl, py), (-px, py)), ((-hl, -py), (-px, -py)),
-        ((px, -py), (px, py)), ((hl, py), (px, py)), ((hl, -py), (px, -py)),
+        ((hl, -hw), (hl, hw)), ((-hl, -hw), (-hl, hw)),
+        ((hl, hw), (-hl, hw)), ((hl, -hw), (-hl, -hw)),
+        ((px, py), (px, -py)), ((px, py), (hl, py)), ((px, -py), (hl, -py)),
+        ((-px, py), (-px, -py)), ((-px, py), (-hl, py)), ((-px, -py), (-hl, -py)),
     ]
     segments += _centre_circle_chords()
     lines = np.zeros((len(segments), 2, 3))

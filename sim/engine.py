@@ -1,0 +1,400 @@
+"""The simulation engine without transport: agents in, bytes out, one 20 ms cycle per `SimEngine.step`.
+
+Hosts (sim.tcp_server over TCP, sim.inprocess without sockets) call `connect`, pass every received frame
+payload to `receive`, and send what `step` returns. Bad input is logged with the agent id and counted in
+`SimEngine.errors`; it never raises.
+
+The per-cycle order is rcssserver3d's (REFERENCE §3.9), written once in `SimEngine.step`:
+1. apply the actions received since the last step (init moves the robot now; says are delivered now);
+2. sample the accelerometers, then apply beams (SimSpark's beam acts after that sample);
+3. hand back the sense messages made at the end of the previous step;
+4. physics step; the referee's update; body poses refreshed;
+5. make this step's sense messages, to be handed back by the next `step`.
+Because the host sends step k's output after step k returns and the agent's reply is applied in step k+1,
+an action sent in reply to sense message k first shows in message k+2, as measured on the real server.
+"""
+
+from __future__ import annotations
+
+import logging
+from collections import Counter
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from agent.protocol.effectors import (Beam, Init, InvalidAction, JointVelocity, PassMode, Say, Scene, Syn,
+                                      UnknownAction, parse_actions)
+from agent.protocol.errors import ProtocolError
+from agent.protocol.perceptors import GameState, Hear
+from agent.protocol.sense import format_sense
+from sim.hearing import Hearing, Listener, Speaker
+from sim.perceptors import body_sense, wire_joint_order
+from sim.physics_params import PhysicsParams
+from sim.vision import CALIBRATION_ERROR_M, Observer, PlayerParts, VisionConfig, see
+from sim.world import VISIBLE_PARTS, World
+
+logger = logging.getLogger(__name__)
+
+#: REFERENCE §3.7: beam noise and the allowed area (team frame, StartAnyFieldPosition false).
+BEAM_NOISE_M = 0.05
+BEAM_NOISE_DEG = 10.0
+BEAM_X_RANGE_M = (-15.0, 0.0)
+BEAM_Y_RANGE_M = (-10.0, 10.0)
+BEAM_HEIGHT_M = 0.4
+#: Vision every third perceptor cycle (REFERENCE §3.5).
+VISION_INTERVAL = 3
+#: Errors logged per agent at WARNING before the rest go to DEBUG (a broken agent must not flood the log).
+LOGGED_ERRORS_PER_AGENT = 20
+_SCENES = {"rsg/agent/nao/nao.rsg": False, "rsg/agent/nao/nao_hetero.rsg": True}
+
+
+@dataclass
+class AgentLink:
+    """One connection: its robot (once scene arrived), team, and what it sent since the last step.
+
+    key: agent id (also the robot's key in the world); team: team name after a successful init; side /
+    unum: "left"/"right" and 1-11 then; perceptor_cycles: sense messages made so far (vision phase).
+    """
+
+    key: int
+    robot_type: int | None = None
+    team: str | None = None
+    side: str | None = None
+    unum: int | None = None
+    calibration_m: np.ndarray = field(default_factory=lambda: np.zeros(3))
+    pending: list[Any] = field(default_factory=list)
+    synced: bool = False
+    announce_identity: bool = False
+    perceptor_cycles: int = 0
+    created_cycle: int = -1
+    errors: int = 0
+
+
+class FrozenReferee:
+    """A stand-in referee: BeforeKickOff forever, time frozen, beam allowed, REFERENCE §3.2 init spots.
+
+    Used by tests that need no rules; `SimEngine` uses `sim.referee.Referee` unless told otherwise.
+    """
+
+    play_mode = "BeforeKickOff"
+    game_time_s = 0.0
+    score_left = 0
+    score_right = 0
+
+    def __init__(self) -> None:
+        self._teams: dict[str, str] = {}
+        self._unums: dict[str, set[int]] = {"left": set(), "right": set()}
+        self._next_y = {"left": 9.2, "right": 9.2}
+
+    def allows_beam(self) -> bool:
+        return True
+
+    def update(self, world: Any) -> None:
+        return None
+
+    def on_init(self, team: str, unum: int, robot_type: int = 0) -> Any:
+        from sim.referee import Assignment
+        side = self._teams.get(team)
+        if side is None:
+            if len(self._teams) == 2:
+                return None
+            side = "left" if not self._teams else "right"
+            self._teams[team] = side
+        if unum == 0:
+            unum = next((n for n in range(1, 12) if n not in self._unums[side]), 0)
+        if not 1 <= unum <= 11 or unum in self._unums[side]:
+            return None
+        self._unums[side].add(unum)
+        y = self._next_y[side]
+        self._next_y[side] -= 1.2
+        x = -14.2 if side == "left" else 14.2
+        return Assignment(side, unum, (x, y, 0.4), 0.0 if side == "left" else 180.0)
+
+    def on_leave(self, side: str, unum: int, robot_type: int = 0) -> None:
+        self._unums[side].discard(unum)
+
+    def request_pass(self, side: str, unum: int) -> bool:
+        return False
+
+
+class SimEngine:
+    """The rcssserver3d-compatible simulation, one `step` per 20 ms cycle.
+
+    Args:
+        seed: seed of every random draw (calibration, beam and vision noise): same seed, same bytes.
+        sync: sync mode (the host waits for every agent's ``(syn)`` before stepping; see `ready`).
+        referee: the rules (default `sim.referee.Referee(seed=seed)`); `FrozenReferee` for no rules.
+        physics: MuJoCo settings (`sim.physics_params.default_physics_params()` if None).
+        vision: vision switches (noise, calibration, lines).
+    """
+
+    def __init__(self, seed: int = 0, sync: bool = True, referee: Any = None, physics: PhysicsParams | None = None,
+                 vision: VisionConfig | None = None) -> None:
+        if referee is None:
+            from sim.referee import Referee
+            referee = Referee(seed=seed)
+        self.seed = seed
+        self.sync = sync
+        self.referee = referee
+        self.world = World(physics)
+        self.vision = vision or VisionConfig()
+        self.rng = np.random.default_rng(seed)
+        self.hearing = Hearing()
+        self.agents: dict[int, AgentLink] = {}
+        self.errors: Counter[int] = Counter()
+        self.cycle = 0
+        self._next_id = 1
+        self._outbox: dict[int, bytes] = {}
+        self._hears: dict[int, list[Hear]] = {}
+
+    # ---- connections ---------------------------------------------------------------------------------
+    def connect(self) -> int:
+        """A new agent connection; returns its id (its robot appears with its ``scene`` command)."""
+        key = self._next_id
+        self._next_id += 1
+        self.agents[key] = AgentLink(key)
+        return key
+
+    def disconnect(self, agent_id: int) -> None:
+        """Drop an agent and its robot; its uniform number is free again. Unknown ids are ignored."""
+        link = self.agents.pop(agent_id, None)
+        if link is None:
+            return
+        self._outbox.pop(agent_id, None)
+        self.hearing.forget(agent_id)
+        if link.side is not None and link.unum is not None and hasattr(self.referee, "on_leave"):
+            self.referee.on_leave(link.side, link.unum, link.robot_type or 0)
+        if agent_id in self.world.by_key:
+            self.world.remove_robot(agent_id)
+
+    def receive(self, agent_id: int, payload: bytes) -> None:
+        """Queue one frame payload of an agent; applied at the start of the next `step`. Never raises."""
+        link = self.agents.get(agent_id)
+        if link is None:
+            self._error(None, f"message from unknown agent id {agent_id}")
+            return
+        try:
+            actions = parse_actions(payload)
+        except ProtocolError as error:
+            self._error(link, f"malformed message dropped: {error}")
+            return
+        for action in actions:
+            if isinstance(action, Syn):
+                link.synced = True
+            elif isinstance(action, UnknownAction):
+                self._error(link, f"unknown effector {action.name!r} at byte {action.offset}")
+            elif isinstance(action, InvalidAction):
+                self._error(link, f"invalid {action.name!r} at byte {action.offset}: {action.reason}")
+            else:
+                link.pending.append(action)
+
+    def ready(self) -> bool:
+        """Sync mode: True when every agent with a robot has sent ``(syn)`` since the last step (or is in its
+        first 4 perceptor cycles, which count as synced, REFERENCE §3.9)."""
+        return all(link.synced or link.perceptor_cycles < 4 for link in self.agents.values()
+                   if link.key in self.world.by_key)
+
+    @property
+    def time_s(self) -> float:
+        """Server time [s]: cycles so far x 20 ms."""
+        return round(self.cycle * self.world.params.cycle_s, 9)
+
+    # ---- the cycle -----------------------------------------------------------------------------------
+    def step(self) -> dict[int, bytes]:
+        """One 20 ms cycle (order in the module docstring); returns agent id -> sense payload (unframed),
+        the messages made at the end of the previous step."""
+        beams = self._apply_actions()
+        self.world.begin_cycle()
+        for link, beam in beams:
+            self._beam(link, beam)
+        out, self._outbox = self._outbox, {}
+        self.world.step()
+        self.cycle += 1
+        self.referee.update(self.world)
+        self.world.end_cycle()
+        self._outbox = self._percepts()
+        for link in self.agents.values():
+            link.synced = False
+        return {key: payload for key, payload in out.items() if key in self.agents}
+
+    def _apply_actions(self) -> list[tuple[AgentLink, Beam]]:
+        beams: list[tuple[AgentLink, Beam]] = []
+        speakers: list[Speaker] = []
+        for link in list(self.agents.values()):
+            pending, link.pending = link.pending, []
+            joints: dict[str, float] = {}
+            for action in pending:
+                if isinstance(action, JointVelocity):
+                    if not action.finite:
+                        self._error(link, f"non-finite value for {action.effector} ignored")
+                    else:
+                        joints[action.effector] = action.velocity_rad_s
+                elif isinstance(action, Scene):
+                    self._scene(link, action)
+                elif isinstance(action, Init):
+                    self._init(link, action)
+                elif isinstance(action, Beam):
+                    if not action.finite:
+                        self._error(link, "non-finite beam ignored")
+                    else:
+                        beams.append((link, action))
+                elif isinstance(action, Say):
+                    if link.team is None or link.key not in self.world.by_key:
+                        self._error(link, "say before a successful init ignored")
+                    else:
+                        speakers.append(Speaker(link.key, link.team, link.side or "left",
+                                                tuple(self.world.torso_position(link.key)), action.message))
+                elif isinstance(action, PassMode):
+                    if link.side is not None and hasattr(self.referee, "request_pass"):
+                        self.referee.request_pass(link.side, link.unum)
+            if joints:
+                self._joints(link, joints)
+        listeners = [Listener(link.key, link.team or "", link.side or "", tuple(self.world.torso_position(link.key)))
+                     for link in self.agents.values() if link.key in self.world.by_key]
+        self._hears = self.hearing.deliver(speakers, listeners, self.referee.game_time_s)
+        return beams
+
+    def _scene(self, link: AgentLink, scene: Scene) -> None:
+        if link.key in self.world.by_key:
+            self._error(link, "second scene command ignored")
+            return
+        hetero = _SCENES.get(scene.path)
+        if hetero is None:
+            self._error(link, f"unknown scene {scene.path!r}; expected one of {sorted(_SCENES)}")
+            return
+        robot_type = scene.robot_type if hetero and scene.robot_type is not None else 0
+        if not 0 <= robot_type <= 4:
+            self._error(link, f"unknown robot type {robot_type} in scene")
+            return
+        try:
+            self.world.add_robot(link.key, robot_type)
+        except ValueError as error:
+            self._error(link, f"robot not created: {error}")
+            return
+        link.robot_type = robot_type
+        link.created_cycle = self.cycle + 1
+        link.calibration_m = self.rng.uniform(-CALIBRATION_ERROR_M, CALIBRATION_ERROR_M, 3)
+
+    def _init(self, link: AgentLink, init: Init) -> None:
+        if link.key not in self.world.by_key:
+            self._error(link, "init before scene ignored")
+            return
+        if link.team is not None:
+            self._error(link, "second init ignored")
+            return
+        assignment = self.referee.on_init(init.team, init.unum, link.robot_type or 0)
+        if assignment is None:
+            self._error(link, f"init refused (team {init.team!r}, unum {init.unum})")
+            return
+        link.team, link.side, link.unum = init.team, assignment.side, assignment.unum
+        link.announce_identity = True
+        self.world.set_team(link.key, assignment.side, assignment.unum)
+        x, y, z = assignment.position_m
+        self.world.place_robot(link.key, x, y, assignment.heading_deg, z)
+
+    def _joints(self, link: AgentLink, values: dict[str, float]) -> None:
+        if link.key not in self.world.by_key:
+            self._error(link, "joint command before scene ignored")
+            return
+        index_of = _effector_index(link.robot_type or 0)
+        index, velocity = [], []
+        for effector, value in values.items():
+            i = index_of.get(effector)
+            if i is None:
+                self._error(link, f"robot type {link.robot_type} has no joint effector {effector!r}")
+                continue
+            index.append(i)
+            velocity.append(value)
+        if index:
+            self.world.motors.command(link.key, np.array(index), np.array(velocity), self.world.data.qpos,
+                                      self.world.time_s)
+
+    def _beam(self, link: AgentLink, beam: Beam) -> None:
+        """REFERENCE §3.7: allowed play modes, clamp, noise, team frame, upright at z 0.4, velocities zeroed."""
+        if link.side is None or link.key not in self.world.by_key:
+            self._error(link, "beam before a successful init ignored")
+            return
+        if not self.referee.allows_beam():
+            return
+        x = min(max(beam.x_m, BEAM_X_RANGE_M[0]), BEAM_X_RANGE_M[1])
+        y = min(max(beam.y_m, BEAM_Y_RANGE_M[0]), BEAM_Y_RANGE_M[1])
+        dx, dy, drot = self.rng.uniform(-1.0, 1.0, 3) * (BEAM_NOISE_M, BEAM_NOISE_M, BEAM_NOISE_DEG)
+        x, y, rot = x + dx, y + dy, beam.rot_deg + drot
+        if link.side == "right":
+            x, y, rot = -x, -y, rot + 180.0
+        self.world.place_robot(link.key, x, y, rot, BEAM_HEIGHT_M)
+
+    # ---- perceptors ----------------------------------------------------------------------------------
+    def _percepts(self) -> dict[int, bytes]:
+        world = self.world
+        # A new robot's perceptors start one cycle after the step that built it: measured, its first message
+        # shows two steps of free fall (vision height, and ACC 29.42 = 2 g + g when init stops the fall).
+        links = [link for link in self.agents.values()
+                 if link.key in world.by_key and self.cycle > link.created_cycle]
+        if not links:
+            return {}
+        angles_deg = np.degrees(world.all_joint_angles_rad())
+        rates_deg_s = np.degrees(world.data.qvel[world.root_dof[:, None] + np.arange(3, 6)])
+        row = {key: i for i, key in enumerate(world.order)}
+        sees = self._vision(links)
+        referee = self.referee
+        now = self.time_s
+        out = {}
+        for link in links:
+            robot = world.by_key[link.key]
+            names, order = wire_joint_order(robot.robot_type)
+            span = world.motors.span(link.key)
+            identity = link.announce_identity
+            link.announce_identity = False
+            game_state = GameState(link.unum if identity else None, link.side if identity else None,
+                                   referee.score_left, referee.score_right, referee.game_time_s,
+                                   referee.play_mode)
+            sense = body_sense(now, game_state, self._hears.get(link.key, []), rates_deg_s[row[link.key]].tolist(),
+                               robot.acc_m_s2.tolist(), names, angles_deg[span][order].tolist(),
+                               world.foot_forces(link.key), sees.get(link.key))
+            link.perceptor_cycles += 1
+            try:
+                out[link.key] = format_sense(sense)
+            except ProtocolError as error:   # e.g. a team name that is no atom: never crash the cycle
+                self._error(link, f"sense message not formatted: {error}")
+        return out
+
+    def _vision(self, links: list[AgentLink]) -> dict[int, Any]:
+        world = self.world
+        seeing = [link for link in links if link.perceptor_cycles % VISION_INTERVAL == 0]
+        if not seeing:
+            return {}
+        data = world.data
+        players = []
+        for link in self.agents.values():
+            robot = world.by_key.get(link.key)
+            if robot is not None and link.team is not None:
+                players.append(PlayerParts(link.team, link.unum or 0, data.xpos[robot.part_bodies], VISIBLE_PARTS))
+        observers = []
+        for link in seeing:
+            robot = world.by_key[link.key]
+            observers.append(Observer(data.xpos[robot.head_body], data.xmat[robot.head_body].reshape(3, 3),
+                                      link.calibration_m, link.team or "", link.unum or 0))
+        frames = see(observers, np.array(world.ball_position()), players, self.rng, self.vision)
+        return {link.key: frame for link, frame in zip(seeing, frames)}
+
+    # ---- errors --------------------------------------------------------------------------------------
+    def _error(self, link: AgentLink | None, text: str) -> None:
+        key = link.key if link is not None else -1
+        self.errors[key] += 1
+        if link is not None:
+            link.errors += 1
+        level = logging.WARNING if self.errors[key] <= LOGGED_ERRORS_PER_AGENT else logging.DEBUG
+        logger.log(level, "agent %d: %s", key, text)
+
+
+_EFFECTOR_INDEX: dict[int, dict[str, int]] = {}
+
+
+def _effector_index(robot_type: int) -> dict[str, int]:
+    if robot_type not in _EFFECTOR_INDEX:
+        from kinematics.spec import robot_spec
+        _EFFECTOR_INDEX[robot_type] = {j.effector: i for i, j in enumerate(robot_spec(robot_type).joints)}
+    return _EFFECTOR_INDEX[robot_type]
+
