@@ -19,6 +19,7 @@ from typing import Protocol, TextIO
 from sim.monitor_scene import (IDENTITY, Matrix, Node, SceneWriter, ball_node, number, pose_matrix, robot_node,
                                static_scene, translation)
 from sim.rules.params import PLAY_MODES, RefereeConfig, default_config
+from sim.rules.self_collision import BodyPoseArrays
 
 logger = logging.getLogger(__name__)
 
@@ -223,7 +224,7 @@ class MujocoWorldScene:
     def __init__(self, world: object) -> None:
         self.world = world
         self._model_id = 0
-        self._ids: dict[int, list[tuple[str, int]]] = {}
+        self._ids: dict[int, dict[str, int]] = {}
 
     def ball_pose(self) -> tuple[tuple[float, float, float], tuple[float, ...]]:
         w = self.world
@@ -240,9 +241,9 @@ class MujocoWorldScene:
         out = []
         for robot in w.by_key.values():  # type: ignore[attr-defined]
             if robot.key not in self._ids:
-                self._ids[robot.key] = [(b.name, model.body(robot.prefix + b.name).id) for b in robot.spec.bodies]
-            bodies = {name: (tuple(data.xpos[i]), tuple(data.xmat[i])) for name, i in self._ids[robot.key]}
-            out.append((robot.side, robot.unum or 0, robot.robot_type, bodies))
+                self._ids[robot.key] = {b.name: model.body(robot.prefix + b.name).id for b in robot.spec.bodies}
+            out.append((robot.side, robot.unum or 0, robot.robot_type,
+                        BodyPoseArrays(self._ids[robot.key], data.xpos, data.xmat)))
         return out
 
 

@@ -12,6 +12,7 @@ import logging
 import math
 import random
 from collections import Counter
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 
 from sim.rules.fouls import FoulTracker
@@ -152,6 +153,9 @@ class Referee:
         self._init_spot = {LEFT: [-half_l + 2 * radius, half_w - 2 * radius],
                            RIGHT: [half_l - 2 * radius, half_w - 2 * radius]}
         self.fouls_tracker = FoulTracker(self.config)
+        # Body poses for the self-collision rule when the world has no ``robot_body_poses()`` of its own
+        # (e.g. ``sim.monitor.MujocoWorldScene(world).robot_body_poses``); None and no world method: rule off.
+        self.body_pose_source: Callable[[], Sequence[tuple[str | None, int, int, Mapping[str, object]]]] | None = None
         self.self_collisions = SelfCollisionRule(self.config.self_collision_tolerance_m,
                                                  self.config.self_collision_joint_frozen_time_s,
                                                  self.config.self_collision_joint_thaw_time_s)
@@ -705,19 +709,17 @@ class Referee:
             logger.info("foul %s by %s %d at t=%.2f", foul_type.name, team, unum, self.game_time_s)
 
     def _check_self_collisions(self, world: WorldView) -> list[tuple[FoulType, str, int]]:
-        """Self-collision (type 7): needs body poses, which a world offers as ``robot_body_poses()``
-        (see sim.monitor.SceneSource); without them the rule is skipped."""
-        poses_of = getattr(world, "robot_body_poses", None)
+        """Self-collision (type 7): needs body poses, from the world's ``robot_body_poses()`` (see
+        sim.monitor.SceneSource) or `body_pose_source`; without them the rule is skipped."""
+        poses_of = getattr(world, "robot_body_poses", None) or self.body_pose_source
         if not self.config.foul_on_self_collisions or poses_of is None:
             return []
+        robots = [(side, unum, robot_type, poses) for side, unum, robot_type, poses in poses_of()
+                  if side is not None and unum]
         fouls: list[tuple[FoulType, str, int]] = []
-        for side, unum, robot_type, poses in poses_of():
-            if side is None or unum is None:
-                continue
-            effectors = self.self_collisions.check(side, unum, robot_type, poses, self.game_time_s)
-            if effectors:
-                world.freeze_joints(side, unum, effectors)
-                fouls.append((FoulType.SELF_COLLISION, side, unum))
+        for side, unum, effectors in self.self_collisions.check_all(robots, self.game_time_s):
+            world.freeze_joints(side, unum, effectors)
+            fouls.append((FoulType.SELF_COLLISION, side, unum))
         return fouls
 
     # ---- helpers -------------------------------------------------------------------------------------

@@ -561,6 +561,8 @@ def build_simulation_server(options: ServeOptions, engine: object | None = None)
         engine = SimEngine(seed=options.seed)
     world, referee = engine.world, engine.referee  # type: ignore[attr-defined]
     scene = MujocoWorldScene(world)
+    if getattr(referee, "body_pose_source", None) is None and not hasattr(world, "robot_body_poses"):
+        referee.body_pose_source = scene.robot_body_poses  # enables the self-collision rule
 
     def snapshot():
         return snapshot_of(scene, referee)

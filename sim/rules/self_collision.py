@@ -8,7 +8,7 @@ practice a pair is reported only when the boxes are turned against each other ab
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from functools import lru_cache
 
@@ -74,11 +74,13 @@ def _overlaps(ra: np.ndarray, rb: np.ndarray, half_a: np.ndarray, half_b: np.nda
     """Vectorised server test for P pairs: rotations (P, 3, 3), half sizes (P, 3), offsets b - a (P, 3)."""
     axes_a = np.swapaxes(ra, 1, 2)  # (P, 3 axes, 3 coords)
     axes_b = np.swapaxes(rb, 1, 2)
-    cross = np.cross(axes_a[:, :, None, :], axes_b[:, None, :, :]).reshape(-1, 9, 3)
+    a, b = axes_a[:, :, None, :], axes_b[:, None, :, :]
+    cross = np.stack([a[..., 1] * b[..., 2] - a[..., 2] * b[..., 1],
+                      a[..., 2] * b[..., 0] - a[..., 0] * b[..., 2],
+                      a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]], axis=-1).reshape(-1, 9, 3)
     planes = np.concatenate([axes_a, axes_b, cross], axis=1)  # (P, 15, 3)
-    reach = (np.abs(np.einsum("pkc,pic->pki", planes, axes_a)) @ half_a[:, :, None])[..., 0] + \
-        (np.abs(np.einsum("pkc,pic->pki", planes, axes_b)) @ half_b[:, :, None])[..., 0]
-    along = np.abs(np.einsum("pkc,pc->pk", planes, offset))
+    reach = (np.abs(planes @ ra) @ half_a[:, :, None])[..., 0] + (np.abs(planes @ rb) @ half_b[:, :, None])[..., 0]
+    along = np.abs((planes @ offset[:, :, None])[..., 0])
     return ~np.any(along + tolerance_m > reach, axis=1)
 
 
@@ -96,25 +98,97 @@ def _pair_table(robot_type: int) -> tuple[tuple[BoxColliderSpec, ...], np.ndarra
     return boxes, first, second, half, radius[first] + radius[second]
 
 
-def colliding_pairs(robot_type: int, poses: Mapping[str, Pose], tolerance_m: float) -> list[tuple[
-        BoxColliderSpec, BoxColliderSpec]]:
-    """Pairs of one robot's box colliders that overlap (exempt pairs skipped).
+class BodyPoseArrays(Mapping):  # type: ignore[type-arg]
+    """Body poses backed by shared arrays (a read-only Mapping name -> (centre, row-major rotation)).
+
+    positions: (N, 3) [m] and rotations: (N, 9) row-major, shared by every robot of a world (MuJoCo's
+    ``xpos``/``xmat``); rows: body name -> row. The rule gathers all robots' boxes in one indexing step.
+    """
+
+    def __init__(self, rows: Mapping[str, int], positions: np.ndarray, rotations: np.ndarray) -> None:
+        self.rows = rows
+        self.positions = positions
+        self.rotations = rotations
+
+    def __getitem__(self, name: str) -> Pose:
+        i = self.rows[name]
+        return tuple(self.positions[i]), tuple(self.rotations[i])  # type: ignore[return-value]
+
+    def __iter__(self):
+        return iter(self.rows)
+
+    def __len__(self) -> int:
+        return len(self.rows)
+
+
+def _box_arrays(robots: Sequence[tuple[int, Mapping[str, Pose]]], members: list[int],
+                robot_type: int) -> tuple[list[int], np.ndarray, np.ndarray]:
+    """Box centres (R, B, 3) and rotations (R, B, 3, 3) of same-type robots; robots lacking a box are left out."""
+    boxes = box_colliders(robot_type)
+    shared: list[int] = []
+    rows: list[list[int]] = []
+    base = None
+    others: list[int] = []
+    for index in members:
+        poses = robots[index][1]
+        if isinstance(poses, BodyPoseArrays) and (base is None or poses.positions is base[0]) and all(
+                box.body in poses.rows for box in boxes):
+            base = base or (poses.positions, poses.rotations)
+            shared.append(index)
+            rows.append([poses.rows[box.body] for box in boxes])
+        else:
+            others.append(index)
+    centres, rotations, kept = [], [], []
+    if shared:
+        assert base is not None
+        idx = np.array(rows, dtype=np.intp)
+        centres.append(base[0][idx])
+        rotations.append(base[1][idx].reshape(len(shared), len(boxes), 3, 3))
+        kept.extend(shared)
+    for index in others:
+        poses = robots[index][1]
+        if any(box.body not in poses for box in boxes):
+            continue
+        centres.append(np.array([[poses[box.body][0] for box in boxes]], dtype=float))
+        rotations.append(np.array([[poses[box.body][1] for box in boxes]], dtype=float).reshape(1, -1, 3, 3))
+        kept.append(index)
+    if not kept:
+        return [], np.zeros((0, len(boxes), 3)), np.zeros((0, len(boxes), 3, 3))
+    return kept, np.concatenate(centres), np.concatenate(rotations)
+
+
+def colliding_pairs_many(robots: Sequence[tuple[int, Mapping[str, Pose]]], tolerance_m: float) -> list[list[
+        tuple[BoxColliderSpec, BoxColliderSpec]]]:
+    """Overlapping box pairs of several robots (robot type, body poses), vectorised per robot type.
 
     Boxes whose bounding spheres are apart are skipped first: disjoint boxes have a separating unit axis,
     and the server's shorter (unnormalised) axes only separate more easily, so the result is unchanged.
     """
-    boxes, first, second, half, reach = _pair_table(robot_type)
-    if any(box.body not in poses for box in boxes):
-        return []
-    centres = np.array([poses[box.body][0] for box in boxes], dtype=float)
-    rotations = np.array([poses[box.body][1] for box in boxes], dtype=float).reshape(-1, 3, 3)
-    offset = centres[second] - centres[first]
-    near = np.nonzero(np.linalg.norm(offset, axis=1) <= reach)[0]
-    if near.size == 0:
-        return []
-    i, j = first[near], second[near]
-    hits = _overlaps(rotations[i], rotations[j], half[i], half[j], offset[near], tolerance_m)
-    return [(boxes[a], boxes[b]) for a, b, hit in zip(i, j, hits) if hit]
+    result: list[list[tuple[BoxColliderSpec, BoxColliderSpec]]] = [[] for _ in robots]
+    by_type: dict[int, list[int]] = {}
+    for index, (robot_type, _) in enumerate(robots):
+        by_type.setdefault(robot_type, []).append(index)
+    for robot_type, members in by_type.items():
+        kept, centres, rotations = _box_arrays(robots, members, robot_type)
+        if not kept:
+            continue
+        boxes, first, second, half, reach = _pair_table(robot_type)
+        offset = centres[:, second] - centres[:, first]  # (R, P, 3)
+        near_robot, near_pair = np.nonzero(np.einsum("rpc,rpc->rp", offset, offset) <= reach * reach)
+        if near_robot.size == 0:
+            continue
+        i, j = first[near_pair], second[near_pair]
+        hits = _overlaps(rotations[near_robot, i], rotations[near_robot, j], half[i], half[j],
+                         offset[near_robot, near_pair], tolerance_m)
+        for r, a, b in zip(near_robot[hits], i[hits], j[hits]):
+            result[kept[r]].append((boxes[a], boxes[b]))
+    return result
+
+
+def colliding_pairs(robot_type: int, poses: Mapping[str, Pose], tolerance_m: float) -> list[tuple[
+        BoxColliderSpec, BoxColliderSpec]]:
+    """Pairs of one robot's box colliders that overlap (exempt pairs skipped)."""
+    return colliding_pairs_many([(robot_type, poses)], tolerance_m)[0]
 
 
 class SelfCollisionRule:
@@ -133,15 +207,28 @@ class SelfCollisionRule:
         """Game paused: forget every freeze (the server re-enables the joints)."""
         self.last_frozen.clear()
 
-    def check(self, side: str, unum: int, robot_type: int, poses: Mapping[str, Pose],
-              game_time_s: float) -> list[str]:
-        """Effectors to freeze now for this robot (empty: no new self-collision foul)."""
-        frozen = self.last_frozen.setdefault((side, unum), {})
-        to_freeze: list[str] = []
-        for a, b in colliding_pairs(robot_type, poses, self.tolerance_m):
-            for effector in a.freeze_effectors + b.freeze_effectors:
-                last = frozen.get(effector)
-                if last is None or game_time_s - last > self.immune_s:
-                    frozen[effector] = game_time_s
-                    to_freeze.append(effector)
-        return to_freeze
+    def check_all(self, robots: Sequence[tuple[str, int, int, Mapping[str, Pose]]],
+                  game_time_s: float) -> list[tuple[str, int, list[str]]]:
+        """(side, unum, effectors to freeze now) for each robot with a new self-collision foul.
+
+        Args:
+            robots: (side, unum, robot type, body poses) per robot.
+            game_time_s: game time (freeze and immunity are timed on it, as in the server).
+        """
+        pairs_of = colliding_pairs_many([(robot_type, poses) for _, _, robot_type, poses in robots],
+                                        self.tolerance_m)
+        out = []
+        for (side, unum, _, _), pairs in zip(robots, pairs_of):
+            if not pairs:
+                continue
+            frozen = self.last_frozen.setdefault((side, unum), {})
+            to_freeze: list[str] = []
+            for a, b in pairs:
+                for effector in a.freeze_effectors + b.freeze_effectors:
+                    last = frozen.get(effector)
+                    if last is None or game_time_s - last > self.immune_s:
+                        frozen[effector] = game_time_s
+                        to_freeze.append(effector)
+            if to_freeze:
+                out.append((side, unum, to_freeze))
+        return out

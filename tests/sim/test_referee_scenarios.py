@@ -68,3 +68,16 @@ def test_ball_over_the_touch_line_gives_a_kick_in_to_the_right_team() -> None:
     run_until(world, referee, lambda: referee.mode_time_s > 1.1, 100)
     x, y, _ = world.ball_position()
     assert x == pytest.approx(3.03, abs=0.05) and y == pytest.approx(10.0 - 0.042, abs=1e-3)
+
+
+def test_robots_standing_still_commit_no_fouls() -> None:
+    from sim.monitor import MujocoWorldScene
+
+    world, referee = setup([(1, "A", 2, -3.0, 1.0, 0.0), (2, "A", 3, -3.0, -1.0, 0.0), (3, "B", 2, 3.0, 1.0, 180.0),
+                            (4, "B", 3, 3.0, -1.0, 180.0)])
+    referee.body_pose_source = MujocoWorldScene(world).robot_body_poses
+    referee.set_play_mode("PlayOn")
+    for _ in range(100):
+        cycle(world, referee)
+    assert referee.fouls == []
+    assert all(robot.torso_pos_m[2] > 0.3 for robot in world.robots())
