@@ -5,9 +5,10 @@ The server owns sockets and the clock, nothing else: any engine-like object with
 Frames are agent.protocol's 4-byte big-endian length prefix. Everything runs on one `selectors` loop with
 non-blocking sockets, so a client driving several agents can answer them in any order.
 
-Cycle order (REFERENCE §3.9): read sockets and hand actions to the engine at once; send the sense
-messages the previous step produced; step. Sending before stepping is what makes an action sent in reply
-to message k show first in message k+2, as on the real server.
+Cycle order (REFERENCE §3.9): read sockets and hand actions to the engine at once; step; send what the
+step returned. The engine's step hands back the sense messages made at the end of the *previous* step
+(sim.engine), which is what makes an action sent in reply to message k show first in message k+2, as on
+the real server; the server itself adds no delay.
 
 Bad input never stops the server: a client whose length prefix exceeds ``max_frame_bytes`` (a "negative"
 prefix is a huge unsigned one), whose output backlog grows past ``max_backlog_bytes`` or whose socket
@@ -291,8 +292,7 @@ class SimServer:
         return agent.synced or agent.cycles < SYNC_GRACE_CYCLES
 
     def _cycle(self) -> None:
-        """Send what the last step produced, step, count."""
-        self._send_percepts()
+        """Step, send what the step returned, count."""
         for agent in self._agents.values():
             agent.synced = False
             agent.waited_since = None
@@ -302,6 +302,7 @@ class SimServer:
             self.stats.engine_errors += 1
             logger.exception("engine step failed; cycle skipped")
             self._pending = {}
+        self._send_percepts()
         self.stats.cycles += 1
         if self.on_cycle is not None:
             try:
@@ -392,6 +393,14 @@ class SimServer:
             self.stats.monitors_accepted += 1
             logger.info("monitor connected from %s", peer)
         self._selector.register(sock, selectors.EVENT_READ, ("client", client))
+        if isinstance(client, _Monitor) and self.monitor is not None:
+            # A full state at once, as the real server does; a sync-mode server may be waiting for agents.
+            try:
+                snapshot = self.monitor.snapshot()
+            except Exception:
+                logger.exception("monitor snapshot failed")
+                return
+            self._send_monitor_message(client, snapshot)
 
     def _read(self, client: _Client) -> None:
         try:
@@ -558,7 +567,7 @@ def build_simulation_server(options: ServeOptions, engine: object | None = None)
     if engine is None:
         from sim.engine import SimEngine
 
-        engine = SimEngine(seed=options.seed)
+        engine = SimEngine(seed=options.seed, sync=options.sync)  # type: ignore[arg-type]
     world, referee = engine.world, engine.referee  # type: ignore[attr-defined]
     scene = MujocoWorldScene(world)
     if getattr(referee, "body_pose_source", None) is None and not hasattr(world, "robot_body_poses"):

@@ -15,7 +15,10 @@ from sim.tcp_server import SimServer
 
 
 class StubEngine:
-    """Counts cycles; each sense message says the cycle and the last action received before the step."""
+    """Counts cycles; each sense message says the cycle and the last action received before the step.
+
+    Like sim.engine.SimEngine, `step` returns the messages made at the end of the previous step.
+    """
 
     def __init__(self) -> None:
         self.next_id = 0
@@ -37,10 +40,12 @@ class StubEngine:
         self.last_action[agent_id] = payload
 
     def step(self) -> dict[int, bytes]:
+        out = {i: payload for i, payload in getattr(self, "outbox", {}).items() if i in self.connected}
         self.cycle += 1
-        return {i: b"(time (now %.2f))(cyc %d)(last %s)" % (self.cycle * 0.02, self.cycle,
-                                                            self.last_action.get(i, b"none"))
-                for i in self.connected}
+        self.outbox = {i: b"(time (now %.2f))(cyc %d)(last %s)" % (self.cycle * 0.02, self.cycle,
+                                                                   self.last_action.get(i, b"none"))
+                       for i in self.connected}
+        return out
 
 
 class Client:
@@ -292,3 +297,77 @@ def test_monitor_port_streams_full_state_then_diffs_and_takes_trainer_commands(s
     with pytest.raises((ConnectionError, OSError)):
         for _ in range(200):
             monitor.recv()
+
+
+def test_real_engine_over_tcp_with_monitor_and_log(tmp_path) -> None:
+    from sim.replay import read_log
+    from sim.tcp_server import ServeOptions, build_simulation_server
+
+    log = tmp_path / "match.log"
+    server, close_log = build_simulation_server(ServeOptions(agent_port=0, monitor_port=0, seed=5,
+                                                             log_path=str(log)))
+    server.start()
+    try:
+        agent = Client(server.agent_port)
+        agent.send(b"(scene rsg/agent/nao/nao.rsg)")
+        first = agent.recv()
+        assert first.startswith(b"(time (now ") and b"(GS (sl 0) (sr 0) (t 0.00) (pm BeforeKickOff))" in first
+        agent.send(b"(init (unum 7)(teamname Tcp))(syn)")
+        messages = []
+        for _ in range(6):
+            messages.append(agent.recv())
+            agent.send(b"(syn)")
+        assert any(b"(GS (unum 7) (team left)" in m for m in messages)
+        monitor = Client(server.monitor_port)
+        full = monitor.recv()
+        assert b"(team_left Tcp)" in full and b"matNum7 matLeft matType0" in full
+        monitor.send(b"(kickOff Left)")
+        deadline = time.monotonic() + 10.0
+        while b"(pm KickOff_Left)" not in agent.recv():
+            agent.send(b"(syn)")
+            assert time.monotonic() < deadline
+        agent.send(b"(syn)")
+        monitor.close()
+        agent.close()
+    finally:
+        server.stop()
+        close_log()
+    frames = list(read_log(log))
+    assert frames and "left_7" in frames[-1].robots
+    assert frames[-1].play_mode in (1, 3)
+
+
+def test_real_engine_over_tcp_action_in_reply_to_k_shows_in_k_plus_2() -> None:
+    from sim.tcp_server import ServeOptions, build_simulation_server
+
+    server, close_log = build_simulation_server(ServeOptions(agent_port=0, monitor_port=None, seed=6))
+    server.start()
+    try:
+        agent = Client(server.agent_port)
+        agent.send(b"(scene rsg/agent/nao/nao.rsg)")
+
+        def head_yaw(message: bytes) -> float:
+            match = re.search(rb"\(HJ \(n hj1\) \(ax (-?[\d.]+)\)\)", message)
+            assert match, message
+            return float(match.group(1))
+
+        for _ in range(10):  # past the 4 grace cycles: from now on one message per (syn)
+            agent.recv()
+            agent.send(b"(syn)")
+        agent.sock.settimeout(0.5)
+        with pytest.raises(socket.timeout):  # read what is in flight without answering: the server waits
+            for _ in range(20):
+                agent.recv()
+        agent.sock.settimeout(5.0)
+        agent.send(b"(syn)")
+        k = agent.recv()
+        agent.send(b"(he1 2.0)(syn)")
+        k1 = agent.recv()
+        agent.send(b"(syn)")
+        k2 = agent.recv()
+        assert head_yaw(k1) == pytest.approx(head_yaw(k), abs=0.05)
+        assert head_yaw(k2) > head_yaw(k) + 0.5
+        agent.close()
+    finally:
+        server.stop()
+        close_log()
