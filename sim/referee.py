@@ -194,15 +194,15 @@ class Referee:
         """
         side = self._side_of(team)
         if side is None:
-            logger.error("init refused: a third team name %r (teams: %s)", team, self.team_names)
+            logger.warning("init refused: a third team name %r (teams: %s)", team, self.team_names)
             return None
         if unum == 0:
             unum = next((n for n in range(1, _MAX_PLAYERS + 1) if n not in self._unums[side]), 0)
         if not 1 <= unum <= _MAX_PLAYERS or unum in self._unums[side]:
-            logger.error("init refused: uniform number %s of team %r is taken or out of 1-11", unum, team)
+            logger.warning("init refused: uniform number %s of team %r is taken or out of 1-11", unum, team)
             return None
         if not self._robot_type_allowed(side, robot_type):
-            logger.error("init refused: robot type %s would break the team composition of %r", robot_type, team)
+            logger.warning("init refused: robot type %s would break the team composition of %r", robot_type, team)
             return None
         self._unums[side].add(unum)
         self._robot_types[side][robot_type] += 1

@@ -12,8 +12,11 @@ import threading
 import time
 from pathlib import Path
 
-from agent.protocol import ProtocolError, parse_actions
+import pytest
+
+from agent.protocol import ProtocolError, parse_actions, parse_sense
 from agent.protocol.framing import FrameDecoder, frame
+from sim.engine import SimEngine
 from sim.referee import Referee
 from sim.rules.trainer import apply_trainer_message
 from sim.tcp_server import SimServer
@@ -22,6 +25,9 @@ from tests.sim.test_referee_rules import FakeWorld
 SAMPLES = Path("/work/shared/samples")
 MAX_MESSAGES = 20000
 TIME_BUDGET_S = 25.0
+# With the MuJoCo engine every fuzz (scene ...) builds a robot (a model recompile), so fewer messages.
+MAX_MESSAGES_REAL_ENGINE = 6000
+TIME_BUDGET_REAL_ENGINE_S = 20.0
 
 
 class ParsingEngine:
@@ -94,11 +100,13 @@ def mutate(rng: random.Random, message: bytes) -> bytes:
 
 
 class GoodAgent(threading.Thread):
-    """Answers every sense message with (syn) and checks the stream: consecutive cycles, own id."""
+    """Answers every sense message with (syn) and checks the stream: one message per cycle (server time
+    up by exactly 20 ms each time), each one a well-formed sense message (the stub's: its own id)."""
 
-    def __init__(self, port: int) -> None:
+    def __init__(self, port: int, real_engine: bool) -> None:
         super().__init__(daemon=True)
         self.sock = socket.create_connection(("127.0.0.1", port), timeout=10.0)
+        self.real_engine = real_engine
         self.cycles: list[int] = []
         self.problems: list[str] = []
         self.stop = threading.Event()
@@ -107,6 +115,8 @@ class GoodAgent(threading.Thread):
         decoder = FrameDecoder()
         my_id = None
         try:
+            if self.real_engine:
+                self.sock.sendall(frame(b"(scene rsg/agent/nao/nao.rsg)"))
             while not self.stop.is_set():
                 data = self.sock.recv(65536)
                 if not data:
@@ -114,16 +124,20 @@ class GoodAgent(threading.Thread):
                         self.problems.append("server closed the good agent")
                     return
                 for payload in decoder.feed(data):
-                    parts = payload.split(b")(")
-                    cycle = int(parts[1].split()[1])
-                    agent = int(parts[2].split()[1].rstrip(b")"))
-                    my_id = agent if my_id is None else my_id
-                    if agent != my_id or (self.cycles and cycle != self.cycles[-1] + 1):
-                        self.problems.append(f"bad message after cycle {self.cycles[-1:]}: {payload!r}")
-                    if not payload.startswith(b"(time (now %.2f))" % (cycle * 0.02)):
-                        self.problems.append(f"altered message {payload!r}")
+                    cycle = round(float(payload[len(b"(time (now "):payload.index(b")")]) / 0.02)
+                    if self.real_engine:
+                        parse_sense(payload)  # raises on anything malformed
+                        reply = b"(he1 0.1)(syn)" if self.cycles else b"(init (unum 5)(teamname Good))(syn)"
+                    else:
+                        agent = int(payload.split(b")(")[2].split()[1].rstrip(b")"))
+                        my_id = agent if my_id is None else my_id
+                        if agent != my_id:
+                            self.problems.append(f"someone else's message {payload!r}")
+                        reply = b"(he1 0.1)(syn)"
+                    if self.cycles and cycle != self.cycles[-1] + 1:
+                        self.problems.append(f"cycle {cycle} after {self.cycles[-1]}: {payload[:60]!r}")
                     self.cycles.append(cycle)
-                    self.sock.sendall(frame(b"(he1 0.1)(syn)"))
+                    self.sock.sendall(frame(reply))
         except (OSError, ValueError, IndexError) as error:
             if not self.stop.is_set():
                 self.problems.append(f"good agent failed: {error!r}")
@@ -137,12 +151,19 @@ def send_quietly(sock: socket.socket, data: bytes) -> bool:
         return False
 
 
-def test_fuzzed_clients_never_disturb_a_good_agent() -> None:
-    rng = random.Random(20260)
+@pytest.mark.parametrize("real_engine", [False, True], ids=["stub-engine", "sim-engine"])
+def test_fuzzed_clients_never_disturb_a_good_agent(real_engine: bool) -> None:
+    rng = random.Random(20260 + real_engine)
     messages = corpus()
-    engine = ParsingEngine()
-    referee, world = Referee(seed=1), FakeWorld()
-    world.add("left", 1, -14.0, 0.0)
+    if real_engine:
+        engine = SimEngine(seed=11)
+        referee, world = engine.referee, engine.world
+        max_messages, budget_s = MAX_MESSAGES_REAL_ENGINE, TIME_BUDGET_REAL_ENGINE_S
+    else:
+        engine = ParsingEngine()
+        referee, world = Referee(seed=1), FakeWorld()
+        world.add("left", 1, -14.0, 0.0)
+        max_messages, budget_s = MAX_MESSAGES, TIME_BUDGET_S
 
     def trainer(payload: bytes) -> None:
         try:
@@ -152,15 +173,21 @@ def test_fuzzed_clients_never_disturb_a_good_agent() -> None:
 
     server = SimServer(engine, agent_port=0, monitor_port=0, sync=True, real_time=False, trainer=trainer,
                        sync_timeout_s=0.05).start()
-    good = GoodAgent(server.agent_port)
+    good = GoodAgent(server.agent_port, real_engine)
     good.start()
     sent = 0
     start = time.monotonic()
     open_clients: list[socket.socket] = []
     try:
-        while sent < MAX_MESSAGES and time.monotonic() - start < TIME_BUDGET_S:
+        while sent < max_messages and time.monotonic() - start < budget_s:
             port = server.monitor_port if rng.random() < 0.2 else server.agent_port
             sock = socket.create_connection(("127.0.0.1", port), timeout=2.0)
+            if port == server.agent_port and rng.random() < 0.3:
+                # A real robot for some fuzzers: scene (any type), maybe init into one of three teams.
+                send_quietly(sock, frame(b"(scene rsg/agent/nao/nao_hetero.rsg %d)" % rng.randrange(6)))
+                if rng.random() < 0.6:
+                    send_quietly(sock, frame(b"(init (unum %d)(teamname %s))(syn)"
+                                             % (rng.randrange(13), rng.choice([b"Good", b"Fuzz", b"Third"]))))
             for _ in range(rng.randint(1, 25)):
                 kind = rng.random()
                 if kind < 0.7:
@@ -200,9 +227,12 @@ def test_fuzzed_clients_never_disturb_a_good_agent() -> None:
         server.stop()
         good.sock.close()
         good.join(5.0)
-    assert sent >= 1000 or elapsed >= TIME_BUDGET_S
+    assert sent >= 1000 or elapsed >= budget_s
     assert not good.problems, good.problems[:5]
     # Silent fuzz clients hold each cycle for the 50 ms sync timeout, so expect at least 10 cycles/s.
     assert len(good.cycles) >= min(100, 10 * elapsed), (len(good.cycles), elapsed)
     assert server.stats.clients_dropped > 10 and server.stats.agents_accepted > 100
-    assert engine.rejected > 0 and engine.parsed > 0
+    if real_engine:
+        assert sum(engine.errors.values()) > 100  # logged and counted, never raised
+    else:
+        assert engine.rejected > 0 and engine.parsed > 0
