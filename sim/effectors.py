@@ -45,7 +45,7 @@ class MotorBank:
         params: physics parameters (servo gain, torque tolerance).
     """
 
-    _FIELDS = ("target", "max_speed", "min_rad", "max_rad", "max_torque", "frozen_until", "gain",
+    _FIELDS = ("target", "max_speed", "min_rad", "max_rad", "max_torque", "frozen_until", "gain", "bias",
                "applied", "start_velocity", "dof", "qadr")
 
     def __init__(self, params: PhysicsParams) -> None:
@@ -58,6 +58,7 @@ class MotorBank:
         self.max_torque = np.zeros(0)      # [N·m]
         self.frozen_until = np.zeros(0)    # server time until which commands are ignored [s]
         self.gain = np.zeros(0)            # servo gain of the current step [N·m·s/rad]
+        self.bias = np.zeros(0)            # constant torque of a motor held at its bound this step [N·m]
         self.applied = np.zeros(0)         # motor torque of the last step [N·m]
         self.start_velocity = np.zeros(0)  # joint velocity at the start of the last step [rad/s]
         self.dof = np.zeros(0, dtype=np.intp)   # qvel / dof address of each joint
@@ -76,7 +77,8 @@ class MotorBank:
             "target": np.zeros(n), "max_speed": np.array([j.max_speed_rad_s for j in joints]),
             "min_rad": np.array([j.min_rad for j in joints]), "max_rad": np.array([j.max_rad for j in joints]),
             "max_torque": np.array([j.max_torque_nm for j in joints]), "frozen_until": np.full(n, -np.inf),
-            "gain": np.full(n, self.params.motor_kv), "applied": np.zeros(n), "start_velocity": np.zeros(n),
+            "gain": np.full(n, self.params.motor_kv), "bias": np.zeros(n), "applied": np.zeros(n),
+            "start_velocity": np.zeros(n),
             "dof": np.zeros(n, dtype=np.intp),
             "qadr": np.zeros(n, dtype=np.intp),
         }
@@ -117,12 +119,16 @@ class MotorBank:
             qpos: the current mjData.qpos (angles are read from it).
             now_s: server time [s] (for the freeze rule).
         """
-        index = self.blocks[key].start + np.asarray(local_index, dtype=np.intp)
+        self.command_many(self.blocks[key].start + np.asarray(local_index, dtype=np.intp), value_rad_s, qpos, now_s)
+
+    def command_many(self, index: np.ndarray, value_rad_s: np.ndarray, qpos: np.ndarray, now_s: float) -> None:
+        """Like `command` for any robots at once: ``index`` are positions in the bank (block start + local)."""
+        index = np.asarray(index, dtype=np.intp)
         angle = qpos[self.qadr[index]]
         inside = (angle > self.min_rad[index]) & (angle < self.max_rad[index]) & (self.frozen_until[index] <= now_s)
         index = index[inside]
         limit = self.max_speed[index]
-        self.target[index] = np.clip(np.asarray(value_rad_s)[inside], -limit, limit)
+        self.target[index] = np.clip(np.asarray(value_rad_s, dtype=float)[inside], -limit, limit)
 
     def reset_robot(self, key: int) -> None:
         """Forget a robot's motor history (after a placement zeroed its velocities)."""
@@ -171,6 +177,7 @@ class MotorBank:
         load = self.applied - inertia * (velocity - self.start_velocity) / h
         self.start_velocity = velocity
         error = self.target - velocity
+        self.bias = np.zeros(error.size)
         needed = load + inertia * error / h
         was_capped = self.gain < kv
         capped = np.abs(needed) > np.where(was_capped, 0.8 * limit, limit)
@@ -184,22 +191,25 @@ class MotorBank:
 
     def _write(self, model: mujoco.MjModel, data: mujoco.MjData) -> None:
         model.dof_damping[self.dof] = self.gain
-        data.qfrc_applied[self.dof] = self.gain * self.target
+        data.qfrc_applied[self.dof] = self.gain * self.target + self.bias
 
     def check(self, model: mujoco.MjModel, data: mujoco.MjData, final: bool = False) -> bool:
         """After a step: record the motor torques; True when a motor exceeded the bound (re-solve needed).
 
-        The re-solve gives those joints the gain of a stuck joint, τmax / |u - q̇|, whose torque stays
-        within the bound however the joint moves toward its target. With ``final`` the step is kept
-        whatever the outcome and False is returned.
+        On a re-solve a stiff servo that exceeded the bound gets the gain of a stuck joint, τmax / |u - q̇|,
+        whose torque stays within the bound while the joint moves toward its target; a joint that exceeded
+        it even so (a load drove it away from its target) is held at the bound with a constant torque,
+        which is ODE's saturated motor. Torque into a stop is exempt (see below). With ``final`` the step
+        is kept whatever the outcome and False is returned.
         """
         if self.target.size == 0:
             return False
-        torque = self.gain * (self.target - data.qvel[self.dof])
+        torque = self.gain * (self.target - data.qvel[self.dof]) + self.bias
         self.applied = torque
         if final:
             return False
-        over = np.abs(torque) > self.max_torque * (1.0 + self.params.motor_torque_tolerance)
+        limit = self.max_torque
+        over = np.abs(torque) > limit * (1.0 + self.params.motor_torque_tolerance)
         if not over.any():
             return False
         # Torque pushing a joint into its stop is absorbed by the stop (both act on the same two bodies),
@@ -207,14 +217,17 @@ class MotorBank:
         angle = data.qpos[self.qadr]
         at_stop = ((torque > 0) & (angle >= self.max_rad - _STOP_BAND_RAD)) | \
             ((torque < 0) & (angle <= self.min_rad + _STOP_BAND_RAD))
+        kv = self.params.motor_kv
+        stuck = limit / np.maximum(np.abs(self.target - self.start_velocity), limit / kv)
         if not (over & ~at_stop).any():
-            error = np.abs(self.target - self.start_velocity)
-            self.gain = np.where(over, self.max_torque / np.maximum(error, self.max_torque / self.params.motor_kv),
-                                 self.gain)
-            self.applied = np.where(over, np.sign(torque) * self.max_torque, torque)
+            self.gain = np.where(over, stuck, self.gain)
+            self.applied = np.where(over, np.sign(torque) * limit, torque)
             return False
-        error = np.abs(self.target - self.start_velocity)
-        stuck = self.max_torque / np.maximum(error, self.max_torque / self.params.motor_kv)
-        self.gain = np.where(over, np.minimum(stuck, self.gain), self.gain)
+        # A stuck gain only helps a joint that still has a velocity error; one at its target velocity yet
+        # overloaded (two legs fighting through the ground) or already on a lowered gain is held instead.
+        stiff = (self.gain >= kv) & (stuck < 0.5 * kv)
+        hold = over & ~stiff
+        self.gain = np.where(over & stiff, stuck, np.where(hold, 0.0, self.gain))
+        self.bias = np.where(hold, np.sign(torque) * limit, self.bias)
         self._write(model, data)
         return True

@@ -221,6 +221,8 @@ class SimEngine:
     def _apply_actions(self) -> list[tuple[AgentLink, Beam]]:
         beams: list[tuple[AgentLink, Beam]] = []
         speakers: list[Speaker] = []
+        motor_index: list[int] = []
+        motor_value: list[float] = []
         for link in list(self.agents.values()):
             pending, link.pending = link.pending, []
             joints: dict[str, float] = {}
@@ -249,10 +251,18 @@ class SimEngine:
                     if link.side is not None and hasattr(self.referee, "request_pass"):
                         self.referee.request_pass(link.side, link.unum)
             if joints:
-                self._joints(link, joints)
-        listeners = [Listener(link.key, link.team or "", link.side or "", tuple(self.world.torso_position(link.key)))
-                     for link in self.agents.values() if link.key in self.world.by_key]
-        self._hears = self.hearing.deliver(speakers, listeners, self.referee.game_time_s)
+                self._joints(link, joints, motor_index, motor_value)
+        if motor_index:
+            self.world.motors.command_many(np.array(motor_index), np.array(motor_value), self.world.data.qpos,
+                                           self.world.time_s)
+        if speakers:
+            listeners = [Listener(link.key, link.team or "", link.side or "",
+                                  tuple(self.world.torso_position(link.key)))
+                         for link in self.agents.values() if link.key in self.world.by_key]
+            self._hears = self.hearing.deliver(speakers, listeners, self.referee.game_time_s)
+        else:
+            self.hearing.refill(list(self.world.by_key))
+            self._hears = {}
         return beams
 
     def _scene(self, link: AgentLink, scene: Scene) -> None:
@@ -293,22 +303,20 @@ class SimEngine:
         x, y, z = assignment.position_m
         self.world.place_robot(link.key, x, y, assignment.heading_deg, z)
 
-    def _joints(self, link: AgentLink, values: dict[str, float]) -> None:
+    def _joints(self, link: AgentLink, values: dict[str, float], index: list[int], velocity: list[float]) -> None:
+        """Collect one agent's joint commands as motor-bank positions (applied together afterwards)."""
         if link.key not in self.world.by_key:
             self._error(link, "joint command before scene ignored")
             return
         index_of = _effector_index(link.robot_type or 0)
-        index, velocity = [], []
+        start = self.world.motors.blocks[link.key].start
         for effector, value in values.items():
             i = index_of.get(effector)
             if i is None:
                 self._error(link, f"robot type {link.robot_type} has no joint effector {effector!r}")
                 continue
-            index.append(i)
+            index.append(start + i)
             velocity.append(value)
-        if index:
-            self.world.motors.command(link.key, np.array(index), np.array(velocity), self.world.data.qpos,
-                                      self.world.time_s)
 
     def _beam(self, link: AgentLink, beam: Beam) -> None:
         """REFERENCE §3.7: allowed play modes, clamp, noise, team frame, upright at z 0.4, velocities zeroed."""
@@ -334,25 +342,27 @@ class SimEngine:
                  if link.key in world.by_key and self.cycle > link.created_cycle]
         if not links:
             return {}
-        angles_deg = np.degrees(world.all_joint_angles_rad())
-        rates_deg_s = np.degrees(world.data.qvel[world.root_dof[:, None] + np.arange(3, 6)])
-        row = {key: i for i, key in enumerate(world.order)}
+        angles_deg = np.degrees(world.data.qpos[world.wire_qadr]).tolist()
+        rates_deg_s = np.degrees(world.data.qvel[world._root_ang]).tolist()
+        accelerations = world.accelerations.tolist()
         sees = self._vision(links)
         referee = self.referee
         now = self.time_s
+        plain_state = GameState(None, None, referee.score_left, referee.score_right, referee.game_time_s,
+                                referee.play_mode)
         out = {}
         for link in links:
-            robot = world.by_key[link.key]
-            names, order = wire_joint_order(robot.robot_type)
-            span = world.motors.span(link.key)
-            identity = link.announce_identity
-            link.announce_identity = False
-            game_state = GameState(link.unum if identity else None, link.side if identity else None,
-                                   referee.score_left, referee.score_right, referee.game_time_s,
-                                   referee.play_mode)
-            sense = body_sense(now, game_state, self._hears.get(link.key, []), rates_deg_s[row[link.key]].tolist(),
-                               robot.acc_m_s2.tolist(), names, angles_deg[span][order].tolist(),
-                               world.foot_forces(link.key), sees.get(link.key))
+            row = world.row[link.key]
+            names = wire_joint_order(link.robot_type or 0)[0]
+            start = world.wire_offsets[row]
+            game_state = plain_state
+            if link.announce_identity:
+                link.announce_identity = False
+                game_state = GameState(link.unum, link.side, referee.score_left, referee.score_right,
+                                       referee.game_time_s, referee.play_mode)
+            sense = body_sense(now, game_state, self._hears.get(link.key, ()), rates_deg_s[row], accelerations[row],
+                               names, angles_deg[start:start + len(names)], world.foot_forces(link.key),
+                               sees.get(link.key))
             link.perceptor_cycles += 1
             try:
                 out[link.key] = format_sense(sense)

@@ -52,6 +52,13 @@ class Hearing:
         self._capacity.pop((key, True), None)
         self._capacity.pop((key, False), None)
 
+    def refill(self, keys: list[int]) -> None:
+        """The per-cycle +1 of every listener's two channels (capped at 2); `deliver` does it itself."""
+        capacity = self._capacity
+        for key in keys:
+            for channel in ((key, True), (key, False)):
+                capacity[channel] = min(CHANNEL_CAPACITY, capacity.get(channel, CHANNEL_CAPACITY - 1) + 1)
+
     def deliver(self, speakers: list[Speaker], listeners: list[Listener],
                 game_time_s: float) -> dict[int, list[Hear]]:
         """One cycle: refill every channel by one, then hand out the says in speaker order.
@@ -59,10 +66,7 @@ class Hearing:
         Returns:
             listener key -> the hears of this cycle, own message first, then own team, then the other.
         """
-        for listener in listeners:
-            for same_team in (True, False):
-                key = (listener.key, same_team)
-                self._capacity[key] = min(CHANNEL_CAPACITY, self._capacity.get(key, CHANNEL_CAPACITY - 1) + 1)
+        self.refill([listener.key for listener in listeners])
         heard: dict[int, list[tuple[int, Hear]]] = {}
         for speaker in speakers:
             for listener in listeners:

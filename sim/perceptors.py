@@ -10,6 +10,7 @@ joint of type 4 after each ankle roll, unverified); `agent.protocol.format_sense
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from functools import lru_cache
 
 import numpy as np
@@ -29,7 +30,7 @@ def wire_joint_order(robot_type: int) -> tuple[tuple[str, ...], np.ndarray]:
     return tuple(ordered), np.array([names.index(n) for n in ordered], dtype=np.intp)
 
 
-def body_sense(now_s: float, game_state: GameState, hears: list[Hear], gyro_deg_s: list[float],
+def body_sense(now_s: float, game_state: GameState, hears: Sequence[Hear], gyro_deg_s: list[float],
                acc_m_s2: list[float], joint_names: tuple[str, ...], joint_deg: list[float],
                frp: dict[str, tuple[np.ndarray, np.ndarray]], see: See | None) -> Sense:
     """One robot's sense message content (format it with `agent.protocol.format_sense`).
@@ -39,14 +40,8 @@ def body_sense(now_s: float, game_state: GameState, hears: list[Hear], gyro_deg_
         gyro_deg_s, acc_m_s2: torso rates and acceleration (x, y, z); joint_names / joint_deg: wire order;
         frp: sensor name -> (contact point [m], force [N]) for feet with contact; see: vision or None.
     """
-    return Sense(
-        time=TimePerceptor(now_s),
-        game_state=game_state,
-        gyro=Gyro("torso", tuple(gyro_deg_s)),  # type: ignore[arg-type]
-        acc=Accelerometer("torso", tuple(acc_m_s2)),  # type: ignore[arg-type]
-        joints=dict(zip(joint_names, joint_deg)),
-        frp={name: ForceResistance(name, tuple(point.tolist()), tuple(force.tolist()))  # type: ignore[arg-type]
-             for name, (point, force) in frp.items()},
-        hears=tuple(hears),
-        see=see,
-    )
+    return Sense(TimePerceptor(now_s), game_state, Gyro("torso", tuple(gyro_deg_s)),  # type: ignore[arg-type]
+                 Accelerometer("torso", tuple(acc_m_s2)), dict(zip(joint_names, joint_deg)),  # type: ignore[arg-type]
+                 {name: ForceResistance(name, tuple(point.tolist()), tuple(force.tolist()))  # type: ignore[arg-type]
+                  for name, (point, force) in frp.items()},
+                 tuple(hears), see)

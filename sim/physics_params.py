@@ -54,7 +54,7 @@ class PhysicsParams:
     """Servo gain of the joint motors [N·m·s/rad]: steady velocity error = load / kv."""
     motor_max_torque_nm: float = 10.0
     """Motor force bound (FMax, REFERENCE §2.2) [N·m]; the per-joint value in the spec wins."""
-    motor_active_set_passes: int = 2
+    motor_active_set_passes: int = 3
     """At most this many physics solves per step to settle which motors are saturated."""
     motor_torque_tolerance: float = 0.05
     """A servo force up to (1 + tolerance) x the bound is accepted without a re-solve."""

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import partial
 
 import numpy as np
 
@@ -27,6 +28,9 @@ SIGMA_DISTANCE_PERCENT = 0.0965
 SIGMA_THETA_DEG = 0.1480
 SIGMA_PHI_DEG = 0.1225
 _TAN_HALF_FOV = math.tan(math.radians(HALF_FOV_DEG))
+_SIGMAS = np.array([0.0, SIGMA_THETA_DEG, SIGMA_PHI_DEG])
+_PARTS_PER_PLAYER = 5
+_new_polar = partial(tuple.__new__, Polar)
 # Inward normals of the view pyramid's planes in the head frame (x right, y ahead, z up).
 _PLANES = np.array([[-1.0, _TAN_HALF_FOV, 0.0], [1.0, _TAN_HALF_FOV, 0.0],
                     [0.0, _TAN_HALF_FOV, -1.0], [0.0, _TAN_HALF_FOV, 1.0]])
@@ -61,7 +65,7 @@ class Observer:
 
 @dataclass(frozen=True)
 class PlayerParts:
-    """A robot as others see it: team name, number, and its visible parts' world positions (5 x 3)."""
+    """A robot as others see it: team name, number, and its 5 visible parts' world positions (5 x 3)."""
 
     team: str
     unum: int
@@ -88,7 +92,7 @@ def see(observers: list[Observer], ball_m: np.ndarray, players: list[PlayerParts
         ball_m: ball centre in the world.
         players: every robot with a team, in connection order (an observer's own entry shows its own
             arms and feet; its own head is dropped by the 0.1 m rule).
-        rng: the world's generator (noise is drawn per observer in order, so runs are reproducible).
+        rng: the world's generator (one draw for all observers, in order, so runs are reproducible).
         config: model switches.
     """
     if not observers:
@@ -97,36 +101,44 @@ def see(observers: list[Observer], ball_m: np.ndarray, players: list[PlayerParts
     fixed = np.vstack([LANDMARK_POSITIONS_M, ball_m[None, :]])
     part_points = np.vstack([p.parts_m for p in players]) if players else np.zeros((0, 3))
     points = np.vstack([fixed, part_points])                                    # (P, 3)
+    if config.lines:
+        points = np.vstack([points, FIELD_LINES_M.reshape(-1, 3)])
     cams = np.stack([o.position_m for o in observers])                          # (K, 3)
     rots = np.stack([o.rotation for o in observers])                            # (K, 3, 3)
-    calib = np.stack([o.calibration_m for o in observers]) if config.calibration else np.zeros((count, 3))
-    rel = np.einsum("kji,kpj->kpi", rots, points[None, :, :] - cams[:, None, :]) + calib[:, None, :]
-    distance, theta, phi = polar(rel)
+    rel = np.einsum("kji,kpj->kpi", rots, points[None, :, :] - cams[:, None, :])
+    if config.calibration:
+        rel += np.stack([o.calibration_m for o in observers])[:, None, :]
+    object_count = fixed.shape[0] + part_points.shape[0]
+    rel_objects = rel[:, :object_count]
+    distance, theta, phi = polar(rel_objects)
     visible = (distance > MIN_DISTANCE_M) & (np.abs(theta) <= HALF_FOV_DEG) & (np.abs(phi) <= HALF_FOV_DEG)
+    seen_k, seen_p = np.nonzero(visible)
+    values = np.stack([distance[seen_k, seen_p], theta[seen_k, seen_p], phi[seen_k, seen_p]], axis=1)
     if config.lines:
-        segments = FIELD_LINES_M.reshape(-1, 3)
-        line_rel = np.einsum("kji,kpj->kpi", rots, segments[None, :, :] - cams[:, None, :]) + calib[:, None, :]
-        line_rel = line_rel.reshape(count, -1, 2, 3)
-        clipped, line_visible = _clip_to_pyramid(line_rel)
+        clipped, line_visible = _clip_to_pyramid(rel[:, object_count:].reshape(count, -1, 2, 3))
+        line_k, line_i = np.nonzero(line_visible)
+        ends = clipped[line_k, line_i].reshape(-1, 3)                           # 2 rows per line
+        line_values = np.stack(polar(ends), axis=1)
+    else:
+        line_k = np.zeros(0, dtype=np.intp)
+        line_values = np.zeros((0, 3))
+    if config.noise:
+        values = _noisy(values, rng)
+        line_values = _noisy(line_values, rng)
     names = LANDMARK_NAMES + ("B",)
-    frames = []
-    for k, observer in enumerate(observers):
-        seen = np.nonzero(visible[k])[0]
-        d, t, p = distance[k, seen], theta[k, seen], phi[k, seen]
-        line_index = np.nonzero(line_visible[k])[0] if config.lines else np.zeros(0, dtype=np.intp)
-        ld, lt, lp = polar(clipped[k, line_index]) if config.lines else (np.zeros((0, 2)),) * 3
-        if config.noise:
-            d, t, p = _noisy(d, t, p, rng)
-            ld, lt, lp = _noisy(ld, lt, lp, rng)
-        frames.append(_frame(seen, d, t, p, ld, lt, lp, names, players))
-    return frames
+    object_rows = np.searchsorted(seen_k, np.arange(count + 1))
+    line_rows = np.searchsorted(line_k, np.arange(count + 1))
+    seen_list, value_list, line_list = seen_p.tolist(), values.tolist(), line_values.tolist()
+    return [_frame(seen_list[object_rows[k]:object_rows[k + 1]], value_list[object_rows[k]:object_rows[k + 1]],
+                   line_list[2 * line_rows[k]:2 * line_rows[k + 1]], names, players) for k in range(count)]
 
 
-def _noisy(d: np.ndarray, t: np.ndarray, p: np.ndarray,
-           rng: np.random.Generator) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    draws = rng.standard_normal((3,) + d.shape)
-    return (d + d * draws[0] * (SIGMA_DISTANCE_PERCENT / 100.0), t + draws[1] * SIGMA_THETA_DEG,
-            p + draws[2] * SIGMA_PHI_DEG)
+def _noisy(values: np.ndarray, rng: np.random.Generator) -> np.ndarray:
+    """Per-point noise on (d, θ, φ) rows (REFERENCE §3.5)."""
+    draws = rng.standard_normal(values.shape)
+    out = values + draws * _SIGMAS
+    out[:, 0] = values[:, 0] * (1.0 + draws[:, 0] * (SIGMA_DISTANCE_PERCENT / 100.0))
+    return out
 
 
 def _clip_to_pyramid(segments: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -149,20 +161,20 @@ def _clip_to_pyramid(segments: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return clipped, visible
 
 
-def _frame(seen: np.ndarray, d: np.ndarray, t: np.ndarray, p: np.ndarray, ld: np.ndarray, lt: np.ndarray,
-           lp: np.ndarray, names: tuple[str, ...], players: list[PlayerParts]) -> See:
+def _frame(seen: list[int], values: list[list[float]], line_values: list[list[float]],
+           names: tuple[str, ...], players: list[PlayerParts]) -> See:
     fixed_count = len(names)
     objects: list[VisibleObject] = []
     parts: dict[int, dict[str, Polar]] = {}
-    d_list, t_list, p_list = d.tolist(), t.tolist(), p.tolist()
-    for i, point in enumerate(seen.tolist()):
+    new_polar = _new_polar
+    for point, (d, t, p) in zip(seen, values):
         if point < fixed_count:
-            objects.append(VisibleObject(names[point], d_list[i], t_list[i], p_list[i]))
+            objects.append(VisibleObject(names[point], d, t, p))
         else:
-            owner, part = divmod(point - fixed_count, len(players[0].part_names))
-            parts.setdefault(owner, {})[players[owner].part_names[part]] = Polar(d_list[i], t_list[i], p_list[i])
+            owner, part = divmod(point - fixed_count, _PARTS_PER_PLAYER)
+            parts.setdefault(owner, {})[players[owner].part_names[part]] = new_polar((d, t, p))
     seen_players = tuple(VisiblePlayer(players[owner].team, players[owner].unum, parts[owner])
                          for owner in sorted(parts))
-    lines = tuple(VisibleLine(Polar(a, b, c), Polar(e, f, g))
-                  for (a, e), (b, f), (c, g) in zip(ld.tolist(), lt.tolist(), lp.tolist()))
+    lines = tuple(VisibleLine(new_polar(line_values[i]), new_polar(line_values[i + 1]))
+                  for i in range(0, len(line_values), 2))
     return See(tuple(objects), seen_players, lines)

@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import logging
 import math
+import time
 from dataclasses import dataclass, field
 
 import mujoco
@@ -94,6 +95,8 @@ class World:
         self.by_key: dict[int, Robot] = {}
         self.motors = MotorBank(self.params)
         self.time_s = 0.0
+        self.mujoco_wall_s = 0.0
+        """Wall time spent inside mujoco.mj_step [s] (for benchmarks)."""
         self._ball_touchers: list[tuple[str, int]] = []
         self._touching_pairs: list[tuple[tuple[str, int], tuple[str, int]]] = []
         self._reindex()
@@ -155,8 +158,6 @@ class World:
         self.motors.add_robot(key, spec.joints)
         self._recompile()
         self._place_root(robot, position_m, yaw_rad=0.0)
-        # The first accelerometer reading of a new robot is free fall (as in the recorded first message).
-        robot.velocity_sample = np.array([0.0, 0.0, p.gravity_m_s2 * p.cycle_s])
         mujoco.mj_kinematics(self.model, self.data)
         return robot
 
@@ -171,6 +172,10 @@ class World:
         self._recompile()
 
     def _recompile(self) -> None:
+        for key, row in getattr(self, "row", {}).items():   # keep the accelerometer history of every robot
+            if key in self.by_key:
+                self.by_key[key].velocity_sample = self.velocity_samples[row].copy()
+                self.by_key[key].acc_m_s2 = self.accelerations[row].copy()
         self.model, self.data = self.spec.recompile(self.model, self.data)
         self._reindex()
 
@@ -220,6 +225,14 @@ class World:
             m.dof_damping[robot.root_dof + 3:robot.root_dof + 6] = n_bodies * p.body_angular_drag_nm_s
             self._apply_collision_bits(robot)
         self.motors.bind_model(m)
+        # Joint angles of every robot in sense-message order, in one gather (see sim.perceptors).
+        from sim.perceptors import wire_joint_order
+        wire, offsets = [], []
+        for robot in self.by_key.values():
+            offsets.append(len(wire))
+            wire.extend(self.motors.qadr[self.motors.span(robot.key)][wire_joint_order(robot.robot_type)[1]])
+        self.wire_qadr = np.array(wire, dtype=np.intp)
+        self.wire_offsets = offsets
         self.sensor_geom = np.array(sensor_geoms, dtype=np.intp)
         self.sensor_body = np.array(sensor_bodies, dtype=np.intp)
         self.frp_active = np.zeros(len(sensor_geoms), dtype=bool)
@@ -227,6 +240,13 @@ class World:
         self.frp_force = np.zeros((len(sensor_geoms), 3))
         self.root_qadr = np.array([r.root_qadr for r in self.by_key.values()], dtype=np.intp)
         self.root_dof = np.array([r.root_dof for r in self.by_key.values()], dtype=np.intp)
+        self._root_pos = self.root_qadr[:, None] + np.arange(3)
+        self._root_quat = self.root_qadr[:, None] + np.arange(3, 7)
+        self._root_lin = self.root_dof[:, None] + np.arange(3)
+        self._root_ang = self.root_dof[:, None] + np.arange(3, 6)
+        self.row = {key: i for i, key in enumerate(self.order)}
+        self.velocity_samples = np.array([r.velocity_sample for r in self.by_key.values()]).reshape(-1, 3)
+        self.accelerations = np.array([r.acc_m_s2 for r in self.by_key.values()]).reshape(-1, 3)
         self.head_bodies = np.array([r.head_body for r in self.by_key.values()], dtype=np.intp)
 
     def _apply_collision_bits(self, robot: Robot) -> None:
@@ -288,15 +308,13 @@ class World:
         """Sample the accelerometers (before beams and physics; see the module docstring)."""
         if not self.by_key:
             return
-        dt = self.params.cycle_s
-        gravity = np.array([0.0, 0.0, -self.params.gravity_m_s2])
         q, v = self.data.qpos, self.data.qvel
-        velocity = v[self.root_dof[:, None] + np.arange(3)]
-        rotation = _quat_to_matrix_batch(q[self.root_qadr[:, None] + np.arange(3, 7)])
-        for index, robot in enumerate(self.by_key.values()):
-            world_acc = (velocity[index] - robot.velocity_sample) / dt - gravity
-            robot.acc_m_s2 = rotation[index].T @ world_acc
-            robot.velocity_sample = velocity[index].copy()
+        velocity = v[self._root_lin]
+        rotation = _quat_to_matrix_batch(q[self._root_quat])
+        world_acc = (velocity - self.velocity_samples) / self.params.cycle_s
+        world_acc[:, 2] += self.params.gravity_m_s2
+        self.accelerations = np.einsum("rji,rj->ri", rotation, world_acc)
+        self.velocity_samples = velocity
 
     def step(self) -> None:
         """One cycle of physics (``substeps`` MuJoCo steps), then contact bookkeeping."""
@@ -307,7 +325,9 @@ class World:
             passes = self.params.motor_active_set_passes if motors.target.size else 1
             saved = _save_state(d) if passes > 1 else None
             for attempt in range(passes):
+                started = time.perf_counter()
                 mujoco.mj_step(m, d)
+                self.mujoco_wall_s += time.perf_counter() - started
                 motors.steps += 1
                 if saved is None or not motors.check(m, d, final=attempt == passes - 1):
                     break
@@ -422,7 +442,7 @@ class World:
 
     def accelerometer_m_s2(self, key: int) -> np.ndarray:
         """Proper acceleration of the torso in torso axes [m/s²] (sampled by `begin_cycle`)."""
-        return self.by_key[key].acc_m_s2
+        return self.accelerations[self.row[key]]
 
     def foot_forces(self, key: int) -> dict[str, tuple[np.ndarray, np.ndarray]]:
         """Sensor name -> (contact point [m], force [N]) in foot coordinates; only feet with contact."""
@@ -458,19 +478,20 @@ class World:
         self.data.qvel[v + 3:v + 6] = 0.0
 
     def robots(self) -> list[RobotState]:
-        """Robots with a team, for the referee."""
-        out = []
-        for robot in self.robots_with_team():
-            a, dof = robot.root_qadr, robot.root_dof
-            rotation = _quat_to_matrix(self.data.qpos[a + 3:a + 7])
-            forward = rotation[:, 1]
-            out.append(RobotState(
-                team=robot.side, unum=robot.unum, robot_type=robot.robot_type,  # type: ignore[arg-type]
-                torso_pos_m=tuple(float(x) for x in self.data.qpos[a:a + 3]),  # type: ignore[arg-type]
-                torso_vel_m_s=tuple(float(x) for x in self.data.qvel[dof:dof + 3]),  # type: ignore[arg-type]
-                torso_up_z=float(rotation[2, 2]),
-                heading_deg=math.degrees(math.atan2(forward[1], forward[0]))))
-        return out
+        """Robots with a team, for the referee (connection order)."""
+        rows = [i for i, robot in enumerate(self.by_key.values()) if robot.side is not None]
+        if not rows:
+            return []
+        robots = list(self.by_key.values())
+        q, v = self.data.qpos, self.data.qvel
+        rotation = _quat_to_matrix_batch(q[self._root_quat[rows]])
+        position = q[self._root_pos[rows]].tolist()
+        velocity = v[self._root_lin[rows]].tolist()
+        up_z = rotation[:, 2, 2].tolist()
+        heading = np.degrees(np.arctan2(rotation[:, 1, 1], rotation[:, 0, 1])).tolist()
+        return [RobotState(robots[r].side, robots[r].unum, robots[r].robot_type,  # type: ignore[arg-type]
+                           tuple(position[i]), tuple(velocity[i]), up_z[i], heading[i])  # type: ignore[arg-type]
+                for i, r in enumerate(rows)]
 
     def robots_with_team(self) -> list[Robot]:
         return [r for r in self.by_key.values() if r.side is not None]

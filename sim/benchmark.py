@@ -1,0 +1,89 @@
+"""Simulation speed: N in-process agents on one core, as a real-time factor (figures, never assertions).
+
+Each agent does what a light real agent does every cycle: parses its whole sense message with
+`agent.protocol.parse_sense` and answers all 22 joint velocities plus ``(syn)`` (head and arms swing, legs
+sway a little, so the robots keep standing and the motors keep working). Targets on one core: 1 robot
+>= 100x real time, 22 robots >= 5x.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+
+from agent.protocol.effectors import Init, Scene, format_actions
+from agent.protocol.sense import parse_sense
+from kinematics.spec import EFFECTOR_NAMES
+from sim.engine import SimEngine
+from sim.inprocess import InProcessHost
+
+#: Robot types per team in connection order: keeps the composition rules of REFERENCE §2.5 for 11.
+TEAM_TYPES = (0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 0)
+# Amplitude [rad/s] of each effector's velocity wave: head and arms move, legs only sway.
+_AMPLITUDE = {"he1": 1.0, "he2": 0.3, "lae1": 0.8, "rae1": 0.8, "lae2": 0.3, "rae2": 0.3, "lae3": 0.5,
+              "rae3": 0.5, "lae4": 0.4, "rae4": 0.4}
+_LEG_AMPLITUDE = 0.02
+
+
+class WaveAgent:
+    """A benchmark agent: scene, init, then 22 joint waves per cycle; parses every sense message."""
+
+    def __init__(self, team: str, robot_type: int, phase: float) -> None:
+        self.team = team
+        self.robot_type = robot_type
+        self.phase = phase
+        self.cycles = 0
+        self.parsed_joints = 0
+
+    def connect_message(self) -> bytes:
+        return format_actions([Scene("rsg/agent/nao/nao_hetero.rsg", self.robot_type)])
+
+    def step(self, sense: bytes) -> bytes:
+        parsed = parse_sense(sense)
+        self.parsed_joints += len(parsed.joints)
+        self.cycles += 1
+        if self.cycles == 1:
+            return format_actions([Init(0, self.team)]) + b"(syn)"
+        t = self.cycles * 0.02
+        parts = [f"({name} {_AMPLITUDE.get(name, _LEG_AMPLITUDE) * math.sin(3.0 * t + self.phase + i):.4f})"
+                 for i, name in enumerate(EFFECTOR_NAMES)]
+        return ("".join(parts) + "(syn)").encode("ascii")
+
+
+@dataclass(frozen=True)
+class BenchResult:
+    robots: int
+    cycles: int
+    sim_seconds: float
+    wall_seconds: float
+    realtime_factor: float
+    raw_mujoco_realtime_factor: float
+    physics_re_solves: int
+    fallen: int
+
+    def as_dict(self) -> dict[str, float | int]:
+        return dict(self.__dict__)
+
+
+def run(robots: int = 22, cycles: int = 500, warmup_cycles: int = 50, seed: int = 0) -> BenchResult:
+    """Connect ``robots`` agents (two teams), let them settle, then time ``cycles`` cycles.
+
+    raw_mujoco_realtime_factor counts only the time inside ``mujoco.mj_step`` in the timed cycles.
+    """
+    engine = SimEngine(seed=seed)
+    host = InProcessHost(engine)
+    for i in range(robots):
+        team, index = ("Left", i // 2) if i % 2 == 0 else ("Right", i // 2)
+        host.add(WaveAgent(team, TEAM_TYPES[index % len(TEAM_TYPES)], phase=0.7 * i))
+    host.run(warmup_cycles)
+    world = engine.world
+    world.mujoco_wall_s = 0.0
+    re_solves = world.motors.re_solves
+    start = time.perf_counter()
+    host.run(cycles)
+    wall = time.perf_counter() - start
+    sim_seconds = cycles * world.params.cycle_s
+    fallen = sum(1 for r in world.robots() if r.torso_pos_m[2] < 0.25)
+    return BenchResult(robots, cycles, sim_seconds, wall, sim_seconds / wall,
+                       sim_seconds / max(world.mujoco_wall_s, 1e-9), world.motors.re_solves - re_solves, fallen)

@@ -1,0 +1,185 @@
+"""Physics of sim.world: standing, falling, joint motors, foot forces, ball, robots joining and leaving."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from sim.world import World
+
+EFFECTORS = ("he1", "he2", "lae1", "lae2", "lae3", "lae4", "lle1", "lle2", "lle3", "lle4", "lle5", "lle6",
+             "rle1", "rle2", "rle3", "rle4", "rle5", "rle6", "rae1", "rae2", "rae3", "rae4")
+
+
+def cycle(world: World, n: int = 1) -> None:
+    for _ in range(n):
+        world.begin_cycle()
+        world.step()
+        world.end_cycle()
+
+
+def standing(n: int = 1) -> World:
+    world = World()
+    for key in range(n):
+        world.add_robot(key, 0)
+        world.set_team(key, "left", key + 1)
+        world.place_robot(key, -10.0 + 2.0 * key, -3.0, 0.0, z_m=0.385)
+    return world
+
+
+def command(world: World, key: int, effector: str, value: float) -> None:
+    world.motors.command(key, np.array([EFFECTORS.index(effector)]), np.array([value]), world.data.qpos,
+                         world.time_s)
+
+
+def test_zero_velocity_robot_stands_still_10_s() -> None:
+    world = standing()
+    foot = world.by_key[0].foot_bodies["lf"]
+    cycle(world, 10)
+    start = world.data.xpos[foot].copy()
+    heights = []
+    for _ in range(490):
+        cycle(world)
+        heights.append(world.torso_position(0)[2])
+    assert min(heights) > 0.38 and max(heights) < 0.39
+    assert world.torso_rotation(0)[2, 2] > 0.9999
+    assert np.linalg.norm(world.data.xpos[foot] - start) < 1e-3          # feet do not slide
+    assert np.abs(np.degrees(world.joint_angles_rad(0))).max() < 0.1      # motors hold the pose
+
+
+def test_standing_foot_forces_and_inertial_sensors() -> None:
+    world = standing()
+    cycle(world, 200)
+    forces = world.foot_forces(0)
+    assert set(forces) == {"lf", "rf"}
+    for point, force in forces.values():
+        assert force[2] == pytest.approx(4.6071 * 9.81 / 2, abs=0.3)     # REFERENCE: 22.6 N per foot
+        assert abs(force[0]) < 0.5 and abs(force[1]) < 0.5
+        # force-weighted contact point: on the sole (z -0.01), under the CoM (about 1 cm behind the centre)
+        assert point[2] == pytest.approx(-0.01, abs=1e-3)
+        assert point[1] == pytest.approx(-0.0087, abs=2e-3)
+    assert world.accelerometer_m_s2(0) == pytest.approx([0.0, 0.0, 9.81], abs=0.02)
+    assert np.abs(world.gyro_rad_s(0)).max() < 0.01
+
+
+def test_bad_pose_falls_and_the_fall_shows_in_the_sensors() -> None:
+    world = standing()
+    cycle(world, 10)
+    for effector in ("lle3", "rle3"):   # swing both thighs forward fast: the torso topples backwards
+        command(world, 0, effector, 6.0)
+    gyro, acc, contact_cycles, heights = [], [], [], []
+    for _ in range(150):
+        cycle(world)
+        gyro.append(np.degrees(np.linalg.norm(world.gyro_rad_s(0))))
+        acc.append(np.linalg.norm(world.accelerometer_m_s2(0) - [0, 0, 9.81]))
+        contact_cycles.append(len(world.foot_forces(0)))
+        heights.append(world.torso_position(0)[2])
+    assert heights[-1] < 0.25                         # fallen (REFERENCE §4.5 "not standing")
+    assert max(gyro) > 100.0                          # the 2012 agent's fall trigger fires
+    assert max(acc) > 5.0
+    assert min(contact_cycles) < 2                    # the feet lost contact on the way down
+
+
+def test_joint_velocity_is_rad_per_s_and_clamped() -> None:
+    world = standing()
+    cycle(world, 5)
+    command(world, 0, "he1", 1.0)
+    cycle(world, 2)
+    start = world.joint_angles_rad(0)[0]
+    cycle(world, 25)
+    assert math.degrees(world.joint_angles_rad(0)[0] - start) / 0.5 == pytest.approx(57.2958, abs=0.05)
+    command(world, 0, "he1", -100.0)
+    cycle(world, 2)
+    start = world.joint_angles_rad(0)[0]
+    cycle(world, 10)
+    assert (world.joint_angles_rad(0)[0] - start) / 0.2 == pytest.approx(-6.1395, abs=1e-3)
+    cycle(world, 60)                                   # runs into the stop at -120° and stays there
+    assert math.degrees(world.joint_angles_rad(0)[0]) == pytest.approx(-120.0, abs=0.2)
+
+
+def test_command_ignored_at_the_stop_and_velocity_held() -> None:
+    world = standing()
+    command(world, 0, "he1", 5.0)
+    cycle(world, 40)                                   # 120° reached after 0.42 s
+    angle = math.degrees(world.joint_angles_rad(0)[0])
+    assert angle >= 120.0 - 0.05
+    command(world, 0, "he1", -1.0)                     # ignored: the angle is not strictly inside
+    cycle(world, 10)
+    assert world.motors.targets(0)[0] == pytest.approx(5.0)
+    assert math.degrees(world.joint_angles_rad(0)[0]) == pytest.approx(angle, abs=0.1)
+
+
+def test_motor_torque_stays_within_10_nm_off_the_stops() -> None:
+    world = standing()
+    rng = np.random.default_rng(3)
+    worst = 0.0
+    for step in range(100):
+        if step % 10 == 0:
+            world.motors.command(0, np.arange(22), rng.uniform(-6, 6, 22), world.data.qpos, world.time_s)
+        cycle(world)
+        angles = world.joint_angles_rad(0)
+        span = world.motors.span(0)
+        inside = (angles > world.motors.min_rad[span] + 0.01) & (angles < world.motors.max_rad[span] - 0.01)
+        worst = max(worst, float(np.abs(world.motors.applied[span][inside]).max(initial=0.0)))
+    assert worst <= 10.0 * 1.05 + 1e-9
+
+
+def test_ball_bounces_and_rolls_out() -> None:
+    world = World()
+    world.set_ball((0.0, 0.0, 1.0))
+    heights, rising = [], False
+    for _ in range(80):
+        cycle(world)
+        z = world.ball_position()[2]
+        if heights and z > heights[-1]:
+            rising = True
+        if rising and heights and z < heights[-1]:
+            break
+        heights.append(z)
+    peak = heights[-1]
+    assert 0.45 < peak < 0.7                           # restitution 0.8: about 0.64 m after a 1 m drop
+    world.set_ball((0.0, 0.0, 0.042), (2.0, 0.0, 0.0))
+    cycle(world, 150)
+    x, _, z = world.ball_position()
+    assert 1.0 < x < 6.0 and z == pytest.approx(0.042, abs=2e-3)
+    assert abs(world.ball_velocity()[0]) < 2.0
+
+
+def test_robots_join_and_leave_without_disturbing_the_others() -> None:
+    world = standing(2)
+    cycle(world, 20)
+    before = world.torso_position(1)
+    world.add_robot(7, 3)
+    assert world.torso_position(7) == pytest.approx([0.0, -1.0, 1.5])
+    assert world.torso_position(1) == pytest.approx(before)
+    world.remove_robot(0)
+    assert world.torso_position(1) == pytest.approx(before)
+    cycle(world, 20)
+    assert world.torso_position(1)[2] == pytest.approx(before[2], abs=2e-3)
+    assert world.torso_position(7)[2] < 1.5            # the new robot falls from its spawn point
+
+
+def test_world_view_for_the_referee() -> None:
+    world = standing(2)
+    world.set_team(1, "right", 4)
+    cycle(world, 3)
+    states = {(r.team, r.unum): r for r in world.robots()}
+    assert set(states) == {("left", 1), ("right", 4)}
+    assert states[("left", 1)].heading_deg == pytest.approx(0.0, abs=0.5)
+    assert states[("left", 1)].torso_up_z > 0.999
+    world.move_robot("right", 4, 3.0, 2.0, 90.0)
+    cycle(world)
+    moved = {(r.team, r.unum): r for r in world.robots()}[("right", 4)]
+    assert moved.torso_pos_m[:2] == pytest.approx((3.0, 2.0), abs=0.01)
+    assert moved.heading_deg == pytest.approx(90.0, abs=0.5)
+    world.set_ball((-10.0 + 0.025 + 0.08 + 0.033, -3.0 + 0.055, 0.042))   # on the left toe's top edge
+    cycle(world)
+    assert world.ball_touchers() == [("left", 1)]
+    world.move_robot("right", 4, -10.0, -3.2, 0.0, z_m=0.385)   # overlapping the left robot
+    cycle(world)
+    assert world.touching_robot_pairs() == [(("left", 1), ("right", 4))]
+    world.freeze_joints("left", 1, ["he1"])
+    command(world, 0, "he1", 1.0)
+    assert world.motors.targets(0)[0] == 0.0
