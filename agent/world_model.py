@@ -68,6 +68,16 @@ class WorldModel:
         self.ignored_messages = 0
         """Heard messages dropped: the other team's, or ours that failed to decode (garbled, foreign)."""
         self._last_yaw: float | None = None
+        self._odometry: tuple[float, float] | None = None
+
+    def report_odometry(self, forward_m: float, left_m: float) -> None:
+        """Torso displacement the motion controller made since the last sense message, ego frame [m].
+
+        Summed until the next :meth:`update`, where the localizer's prediction uses it (without it the
+        localizer assumes unknown motion, REFERENCE §7.5 has no odometry).
+        """
+        f, l = self._odometry or (0.0, 0.0)
+        self._odometry = (f + forward_m, l + left_m)
 
     # --- update: one sense message ----------------------------------------------------------------------
     def update(self, sense: Sense) -> None:
@@ -81,12 +91,14 @@ class WorldModel:
         self._update_game(sense)
         self._update_body(sense)
         yaw = self.orientation.yaw_rad
-        self.localizer.predict(0.0 if self._last_yaw is None else wrap_angle_rad(yaw - self._last_yaw))
+        odometry, self._odometry = self._odometry, None
+        self.localizer.predict(0.0 if self._last_yaw is None else wrap_angle_rad(yaw - self._last_yaw), odometry)
         self._last_yaw = yaw
         if sense.see is not None:
             frame = self._project(sense)
             self.last_vision = frame
-            self.localizer.correct(frame)
+            if not self.body.fallen:  # lying down, "height above the soles" is no camera height
+                self.localizer.correct(frame)
             self._update_objects(frame)
         for hear in sense.hears:
             self._hear(hear.team, hear.direction_deg is None, hear.game_time_s, hear.message)

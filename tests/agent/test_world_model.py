@@ -158,3 +158,24 @@ def test_teammate_message_becomes_a_teammate_with_age_and_garbage_is_ignored():
     assert model.ignored_messages == 3
     model.update(parse_sense(synth.sense_bytes(50.5)))
     assert model.teammates[5].age_s(model.now_s) == pytest.approx(0.5)
+
+
+def test_odometry_moves_the_pose_between_vision_frames():
+    model = _model_at(-6.0, 2.5, 0.0)
+    before = model.pose
+    model.report_odometry(0.05, 0.0)
+    model.report_odometry(0.05, 0.01)
+    model.update(parse_sense(synth.sense_bytes(21.0)))  # no vision this cycle
+    after = model.pose
+    assert (after.x_m, after.y_m) == pytest.approx(before.to_team(0.10, 0.01), abs=1e-9)  # ego -> team frame
+
+
+def test_a_fallen_robot_does_not_correct_its_pose_from_vision():
+    model = _model_at(-6.0, 2.5, 0.0)
+    before = model.pose
+    lying = synth.sense_bytes(21.0, see_value=synth.see(3.0, 3.0, 1.0))  # vision of somewhere else
+    lying = lying.replace(b"(a 0.00 0.00 9.81)", b"(a 0.00 9.81 0.00)")  # gravity along torso y: lying
+    for i in range(30):
+        model.update(parse_sense(lying.replace(b"(now 21.00)", f"(now {21.0 + 0.02 * i:.2f})".encode())))
+    assert model.body.fallen
+    assert model.pose.x_m == pytest.approx(before.x_m, abs=0.01)
