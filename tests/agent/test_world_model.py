@@ -179,3 +179,18 @@ def test_a_fallen_robot_does_not_correct_its_pose_from_vision():
         model.update(parse_sense(lying.replace(b"(now 21.00)", f"(now {21.0 + 0.02 * i:.2f})".encode())))
     assert model.body.fallen
     assert model.pose.x_m == pytest.approx(before.x_m, abs=0.01)
+
+
+def test_real_server_sample_right_team_sees_in_its_own_frame():
+    """CapR beamed (-2.5, 0, 0) in its team frame; the real server put it at world (+2.5, 0) facing -x."""
+    model = WorldModel("CapR", 1)
+    for record in records():
+        if record["k"] == "recv" and record["a"] == "R":
+            model.update(parse_sense(str(record["msg"]).encode()))
+    assert model.game.side == "right"
+    pose = model.pose
+    assert abs(pose.x_m + 2.5) < 0.1 and abs(pose.y_m) < 0.1 and abs(math.degrees(pose.heading_rad)) < 11.0
+    world = model.world_pose()
+    assert world.x_m == pytest.approx(2.5, abs=0.1)
+    assert abs(math.degrees(wrap_angle_rad(world.heading_rad - math.pi))) < 11.0
+    assert model.opponents[1].position[0] == pytest.approx(2.5, abs=0.15)  # CapL at world -2.5
