@@ -11,14 +11,16 @@ from __future__ import annotations
 import logging
 import math
 import random
-from collections import Counter
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 
+from sim.rules.ball import ball_on_field, goal_of
 from sim.rules.fouls import FoulTracker
 from sim.rules.params import (LEFT, PLAY_MODE_INDEX, PLAY_MODES, RIGHT, SIDES, FoulType, RefereeConfig,
                               default_config, in_box, opponent, side_suffix, team_number)
+from sim.rules.pass_mode import PassModeTracker
 from sim.rules.placement import Key, Placer
+from sim.rules.roster import Assignment, Roster
 from sim.rules.self_collision import SelfCollisionRule
 from sim.world_api import RobotState, WorldView
 
@@ -37,15 +39,6 @@ _SET_PIECES: dict[str, tuple[str, str, bool]] = {
 _KICK_DURATION_S = 0.1
 # A touch must come this long after the set-piece pause to count (server: pause + 0.03) [s].
 _TOUCH_DELAY_PAD_S = 0.03
-# The goal's recorder box behind the line (REFERENCE §4.1: 0.516 x 2.016 x 0.8) [m].
-_GOAL_RECORDER_DEPTH_M = 0.516
-_GOAL_RECORDER_HALF_WIDTH_M = 1.008
-# Robot-type composition (REFERENCE §2.5, checked at init).
-_MAX_ROBOTS_OF_TYPE = 7
-_MIN_ROBOT_TYPES = 3
-_MAX_SUM_TWO_TYPES = 9
-_MAX_PLAYERS = 11
-
 
 @dataclass(frozen=True)
 class Foul:
@@ -77,17 +70,6 @@ class RefereeEvent:
     foul: Foul | None = None
 
 
-@dataclass(frozen=True)
-class Assignment:
-    """The result of a successful ``init``: side ("left"/"right"), uniform number and the init spot
-    (torso x, y, z [m] in the field frame, heading [deg], 0 = facing +x)."""
-
-    side: str
-    unum: int
-    position_m: tuple[float, float, float]
-    heading_deg: float
-
-
 @dataclass
 class _Touch:
     key: Key
@@ -110,7 +92,6 @@ class Referee:
         self.half = 1
         self.score_left = 0
         self.score_right = 0
-        self.team_names: dict[str, str | None] = {LEFT: None, RIGHT: None}
         self.events: list[RefereeEvent] = []
         self.fouls: list[Foul] = []
         self.paused = True
@@ -140,18 +121,8 @@ class Referee:
         self._free_kick_taker: Key | None = None
         self._indirect_kick = False
 
-        self._last_pass_mode_s: dict[str, float] = {LEFT: -1000.0, RIGHT: -1000.0}
-        self._pass_cleared_to_score: dict[str, bool] = {LEFT: False, RIGHT: False}
-        self._pass_ball_pos: dict[str, tuple[float, float, float]] = {}
-        self._pass_first_toucher: dict[str, int] = {LEFT: -1, RIGHT: -1}
-        self._pass_multiple_touched: dict[str, bool] = {LEFT: False, RIGHT: False}
-        self._pass_ball_left_circle: dict[str, bool] = {LEFT: False, RIGHT: False}
-
-        self._unums: dict[str, set[int]] = {LEFT: set(), RIGHT: set()}
-        self._robot_types: dict[str, Counter[int]] = {LEFT: Counter(), RIGHT: Counter()}
-        half_l, half_w, radius = self.config.half_length_m, self.config.half_width_m, self.config.agent_radius_m
-        self._init_spot = {LEFT: [-half_l + 2 * radius, half_w - 2 * radius],
-                           RIGHT: [half_l - 2 * radius, half_w - 2 * radius]}
+        self.roster = Roster(self.config)
+        self.pass_mode = PassModeTracker(self.config)
         self.fouls_tracker = FoulTracker(self.config)
         # Body poses for the self-collision rule when the world has no ``robot_body_poses()`` of its own
         # (e.g. ``sim.monitor.MujocoWorldScene(world).robot_body_poses``); None and no world method: rule off.
@@ -175,6 +146,11 @@ class Referee:
             return self._fup_time_s
         return self.game_time_s - self._last_mode_change_s
 
+    @property
+    def team_names(self) -> dict[str, str | None]:
+        """Team name per side ("left"/"right"), None until a team's first init."""
+        return self.roster.team_names
+
     def allows_beam(self) -> bool:
         """Beam is accepted only in BeforeKickOff, Goal_Left and Goal_Right (REFERENCE §3.7)."""
         return self.play_mode in ("BeforeKickOff", "Goal_Left", "Goal_Right")
@@ -192,54 +168,12 @@ class Referee:
             the side, number and init spot, or None when the team, number or robot type is refused
             (logged; the agent then plays without team and number, as on the real server).
         """
-        side = self._side_of(team)
-        if side is None:
-            logger.warning("init refused: a third team name %r (teams: %s)", team, self.team_names)
-            return None
-        if unum == 0:
-            unum = next((n for n in range(1, _MAX_PLAYERS + 1) if n not in self._unums[side]), 0)
-        if not 1 <= unum <= _MAX_PLAYERS or unum in self._unums[side]:
-            logger.warning("init refused: uniform number %s of team %r is taken or out of 1-11", unum, team)
-            return None
-        if not self._robot_type_allowed(side, robot_type):
-            logger.warning("init refused: robot type %s would break the team composition of %r", robot_type, team)
-            return None
-        self._unums[side].add(unum)
-        self._robot_types[side][robot_type] += 1
-        spot = self._init_spot[side]
-        position = (spot[0], spot[1], self.config.agent_radius_m)
-        spot[1] -= 3 * self.config.agent_radius_m
-        if spot[1] < -self.config.half_width_m:
-            spot[1] = self.config.half_width_m - 2 * self.config.agent_radius_m
-            spot[0] += 2 * self.config.agent_radius_m
-        return Assignment(side, unum, position, 0.0 if side == LEFT else 180.0)
+        return self.roster.assign(team, unum, robot_type)
 
     def on_leave(self, side: str, unum: int, robot_type: int = 0) -> None:
         """Return a uniform when its agent disconnects."""
-        self._unums[side].discard(unum)
-        if self._robot_types[side][robot_type] > 0:
-            self._robot_types[side][robot_type] -= 1
+        self.roster.release(side, unum, robot_type)
         self.fouls_tracker.forget((side, unum))
-
-    def _side_of(self, team: str) -> str | None:
-        for side in SIDES:
-            if self.team_names[side] is None:
-                self.team_names[side] = team
-                return side
-            if self.team_names[side] == team:
-                return side
-        return None
-
-    def _robot_type_allowed(self, side: str, robot_type: int) -> bool:
-        counts = self._robot_types[side]
-        if counts[robot_type] >= _MAX_ROBOTS_OF_TYPE:
-            return False
-        others = [n for t, n in counts.items() if t != robot_type and n > 0]
-        if counts[robot_type] + 1 + max(others, default=0) > _MAX_SUM_TWO_TYPES:
-            return False
-        players = sum(counts.values())
-        types_used = sum(1 for n in counts.values() if n > 0)
-        return not (_MAX_PLAYERS - players <= _MIN_ROBOT_TYPES - types_used and counts[robot_type] != 0)
 
     # ---- trainer commands ----------------------------------------------------------------------------
     def kick_off(self, side: str | None) -> None:
@@ -300,23 +234,10 @@ class Referee:
 
     def request_pass(self, side: str, unum: int) -> bool:
         """An agent's ``(pass)``: start pass mode when REFERENCE §4.6 allows it; returns whether it did."""
-        c = self.config
-        if self.play_mode != "PlayOn":
+        if self.play_mode != "PlayOn" or not self.pass_mode.may_start(
+                side, unum, self.game_time_s, self._touching, self._ball_pos, self._ball_vel, self._robots):
             return False
-        if self.game_time_s - self._last_pass_mode_s[side] < c.pass_mode_retry_wait_time_s:
-            return False
-        if any(key[0] == side for key in self._touching):
-            return False
-        if math.sqrt(sum(v * v for v in self._ball_vel)) > c.pass_mode_max_ball_speed_m_s:
-            return False
-        bx, by, _ = self._ball_pos
-        me = next((r for r in self._robots if r.team == side and r.unum == unum), None)
-        if me is None or math.hypot(me.torso_pos_m[0] - bx, me.torso_pos_m[1] - by) > c.pass_mode_max_ball_dist_m:
-            return False
-        if any(r.team != side and math.hypot(r.torso_pos_m[0] - bx, r.torso_pos_m[1] - by)
-               < c.pass_mode_min_opp_ball_dist_m for r in self._robots):
-            return False
-        self._pass_ball_pos[side] = self._ball_pos
+        self.pass_mode.ball_at_start[side] = self._ball_pos
         self._set_mode(f"pass_{side}")
         return True
 
@@ -369,9 +290,7 @@ class Referee:
         self._touching = [(team, unum) for team, unum in touchers]
         if self._touching:
             self._last_touch = _Touch(self._touching[0], self.game_time_s)
-        x, y, _ = self._ball_pos
-        self._ball_on_field = (abs(x) < c.half_length_m + c.ball_radius_m + 0.001
-                               and abs(y) < c.half_width_m + c.ball_radius_m + 0.001)
+        self._ball_on_field = ball_on_field(self._ball_pos, c)
         if self._ball_on_field:
             self._last_valid_ball = self._ball_pos
 
@@ -477,14 +396,10 @@ class Referee:
         self._move_ball(world, self._free_kick_pos)
 
     def _update_pass_mode(self, world: WorldView, side: str) -> None:
+        """pass_<side>: PlayOn after a touch or PassModeDuration; meanwhile opponents kept 1 m away."""
         c = self.config
         self.paused = False
-        self._last_pass_mode_s[side] = self.game_time_s
-        self._pass_first_toucher[side] = -1
-        self._pass_multiple_touched[side] = False
-        self._pass_ball_left_circle[side] = False
-        self._pass_cleared_to_score[side] = False
-        self._last_pass_mode_s[opponent(side)] = -1000.0
+        self.pass_mode.in_pass_mode(side, self.game_time_s, self._ball_pos)
         touch = self._last_touch
         if self.mode_time_s >= c.pass_mode_duration_s:
             self._set_mode("PlayOn")
@@ -492,7 +407,7 @@ class Referee:
             self._set_mode("PlayOn")
         self._update_play_on(world)
         if self.play_mode == f"pass_{side}":
-            self._pass_ball_pos[side] = self._ball_pos
+            self.pass_mode.ball_at_start[side] = self._ball_pos
             self._placer(world).repel((self._ball_pos[0], self._ball_pos[1]), c.pass_mode_min_opp_ball_dist_m,
                                       opponent(side), pad=0.1)
 
@@ -506,7 +421,7 @@ class Referee:
 
     def _update_play_on(self, world: WorldView) -> None:
         self.paused = False
-        self._update_pass_scoring()
+        self.pass_mode.update(self.game_time_s, self._ball_pos, self._touching)
         if self._check_taker_foul_now():
             return
         if self._check_goal():
@@ -514,52 +429,21 @@ class Referee:
         self._check_ball_left_field(world)
 
     # ---- goals and the ball leaving the field --------------------------------------------------------
-    def _goal_state(self) -> str | None:
-        """Which side's goal holds the ball: the goal recorder box (0.516 x 2.016 x 0.8 behind the line,
-        touched by the ball sphere) or the analytic crossing test of REFERENCE §4.1."""
-        c = self.config
-        x, y, z = self._ball_pos
-        r = c.ball_radius_m
-        box_x = (c.goal_ball_line_x_m, c.goal_ball_line_x_m + _GOAL_RECORDER_DEPTH_M)
-        half_y = _GOAL_RECORDER_HALF_WIDTH_M
-        dx = max(box_x[0] - abs(x), 0.0, abs(x) - box_x[1])
-        dy = max(abs(y) - half_y, 0.0)
-        dz = max(-z, 0.0, z - c.goal_height_m)
-        if dx * dx + dy * dy + dz * dz <= r * r:
-            return LEFT if x < 0 else RIGHT
-        beyond = abs(x) - c.goal_ball_line_x_m
-        if beyond < 0:
-            return None
-        vx, vy, vz = self._ball_vel
-        # The ball should have been inside the field a second ago (the server's plausibility test).
-        if abs(x - vx) > c.goal_ball_line_x_m:
-            return None
-        speed = math.sqrt(vx * vx + vy * vy + vz * vz)
-        if speed <= 0.0 or abs(vx) < 1e-9:
-            return None
-        back = beyond / abs(vx / speed)
-        cross_y = y - vy / speed * back
-        cross_z = z - vz / speed * back
-        if abs(cross_y) < c.goal_width_m / 2.0 and cross_z < c.goal_height_m:
-            return LEFT if x < 0 else RIGHT
-        return None
-
     def _check_goal(self) -> bool:
-        goal_of = self._goal_state()
-        if goal_of is None:
+        goal = goal_of(self._ball_pos, self._ball_vel, self.config)
+        if goal is None:
             return False
         if not self._allow_kick_off_team_to_score and self._kick_off_taker is not None:
-            if goal_of != self._kick_off_taker[0]:
-                self._punish_indirect_goal(self._kick_off_taker, goal_of)
+            if goal != self._kick_off_taker[0]:
+                self._punish_indirect_goal(self._kick_off_taker, goal)
                 return True
         kicker = self._last_kick_from_free_kick()
-        if kicker is not None and (self._indirect_kick or kicker[0] == goal_of) and len(self._robots) > 2:
-            self._punish_indirect_goal(kicker, goal_of)
+        if kicker is not None and (self._indirect_kick or kicker[0] == goal) and len(self._robots) > 2:
+            self._punish_indirect_goal(kicker, goal)
             return True
-        scorer = opponent(goal_of)
-        if (self.game_time_s - self._last_pass_mode_s[scorer] < self.config.pass_mode_score_wait_time_s
-                and not self._pass_cleared_to_score[scorer]):
-            self._award_goal_kick(goal_of)
+        scorer = opponent(goal)
+        if self.pass_mode.waiting(scorer, self.game_time_s):
+            self._award_goal_kick(goal)
             return True
         if scorer == LEFT:
             self.score_left += 1
@@ -638,7 +522,7 @@ class Referee:
     def _reset_kick_checks(self) -> None:
         self._check_taker_foul = False
         self._indirect_kick = False
-        self._last_pass_mode_s = {LEFT: -1000.0, RIGHT: -1000.0}
+        self.pass_mode.forget()
 
     def _last_kick_from_free_kick(self) -> Key | None:
         """The set-piece taker when the last touch is still its kick (within 0.1 s), else None."""
@@ -662,35 +546,11 @@ class Referee:
             return True
         return False
 
-    def _update_pass_scoring(self) -> None:
-        """Pass mode: the team may score again once two teammates touched the ball, one after it left 1 m."""
-        c = self.config
-        team = next((s for s in SIDES if self.game_time_s - self._last_pass_mode_s[s] < c.pass_mode_score_wait_time_s
-                     and not self._pass_cleared_to_score[s]), None)
-        if team is None:
-            return
-        if not self._pass_ball_left_circle[team] and team in self._pass_ball_pos:
-            px, py, _ = self._pass_ball_pos[team]
-            if math.hypot(self._ball_pos[0] - px, self._ball_pos[1] - py) >= c.pass_mode_min_opp_ball_dist_m:
-                self._pass_ball_left_circle[team] = True
-        for side, unum in self._touching:
-            if side != team:
-                continue
-            first = self._pass_first_toucher[team]
-            if first > 0 and (first != unum or self._pass_multiple_touched[team]):
-                self._pass_multiple_touched[team] = True
-                if self._pass_ball_left_circle[team]:
-                    self._pass_cleared_to_score[team] = True
-                break
-            self._pass_first_toucher[team] = unum
-
     def pass_mode_score_wait_s(self, side: str) -> float | None:
-        """Seconds until ``side`` may score after its pass mode (monitor field), or None when not waiting."""
-        waited = self.game_time_s - self._last_pass_mode_s[side]
-        if (self.play_mode == "PlayOn" and waited < self.config.pass_mode_score_wait_time_s
-                and not self._pass_cleared_to_score[side]):
-            return self.config.pass_mode_score_wait_time_s - waited
-        return None
+        """Seconds until ``side`` may score after its pass mode (monitor field, PlayOn only), or None."""
+        if self.play_mode != "PlayOn":
+            return None
+        return self.pass_mode.score_wait_s(side, self.game_time_s)
 
     # ---- fouls ---------------------------------------------------------------------------------------
     def _automatic_referee(self, world: WorldView) -> None:

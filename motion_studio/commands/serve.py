@@ -25,7 +25,7 @@ def serve(
 
     Ctrl-C stops it.
     """
-    from sim.tcp_server import ServeOptions, build_simulation_server
+    from sim.serve import ServeOptions, build_simulation_server
 
     options = ServeOptions(host=host, agent_port=port, monitor_port=monitor_port or None, sync=sync,
                            real_time=not sync, seed=seed, log_path=str(log) if log else None)

@@ -301,7 +301,7 @@ def test_monitor_port_streams_full_state_then_diffs_and_takes_trainer_commands(s
 
 def test_real_engine_over_tcp_with_monitor_and_log(tmp_path) -> None:
     from sim.replay import read_log
-    from sim.tcp_server import ServeOptions, build_simulation_server
+    from sim.serve import ServeOptions, build_simulation_server
 
     log = tmp_path / "match.log"
     server, close_log = build_simulation_server(ServeOptions(agent_port=0, monitor_port=0, seed=5,
@@ -338,7 +338,7 @@ def test_real_engine_over_tcp_with_monitor_and_log(tmp_path) -> None:
 
 
 def test_real_engine_over_tcp_action_in_reply_to_k_shows_in_k_plus_2() -> None:
-    from sim.tcp_server import ServeOptions, build_simulation_server
+    from sim.serve import ServeOptions, build_simulation_server
 
     server, close_log = build_simulation_server(ServeOptions(agent_port=0, monitor_port=None, seed=6))
     server.start()
