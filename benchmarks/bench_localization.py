@@ -23,6 +23,7 @@ Figures, never assertions; goal: EKF median position error <= 0.10 m.
 from __future__ import annotations
 
 import argparse
+import itertools
 import json
 import math
 import statistics
@@ -56,8 +57,9 @@ Target = tuple[float, float, float, float, float, float] | None
 def rounded_rectangle(centre=(-2.0, 0.0), half=(6.0, 3.5), radius=1.5, speed=WALK_SPEED_M_S) -> Iterator[Target]:
     """Targets along a closed rounded rectangle, counter-clockwise, one per cycle."""
     (cx, cy), (hx, hy) = centre, half
-    straight = [(cx - hx + radius, cy - hy, 0.0, 2 * (hx - radius)), (cx + hx, cy - hy + radius, 90.0, 2 * (hy - radius)),
-                (cx + hx - radius, cy + hy, 180.0, 2 * (hx - radius)), (cx - hx, cy + hy - radius, 270.0, 2 * (hy - radius))]
+    long_side, short_side = 2 * (hx - radius), 2 * (hy - radius)
+    straight = [(cx - hx + radius, cy - hy, 0.0, long_side), (cx + hx, cy - hy + radius, 90.0, short_side),
+                (cx + hx - radius, cy + hy, 180.0, long_side), (cx - hx, cy + hy - radius, 270.0, short_side)]
     step = speed * CYCLE_S
     for sx, sy, heading, length in straight:
         h = math.radians(heading)
@@ -182,7 +184,7 @@ def scenarios(quick: bool) -> dict[str, Callable[[], Iterator[Target]]]:
     scale = 0.4 if quick else 1.0
     return {
         "standing": lambda: standing(int(150 * scale)),
-        "walking": lambda: rounded_rectangle() if not quick else (t for i, t in enumerate(rounded_rectangle()) if i < 1500),
+        "walking": lambda: itertools.islice(rounded_rectangle(), 1500 if quick else None),
         "turning": lambda: turning(int(600 * scale)),
     }
 
@@ -204,7 +206,8 @@ def plot(results: dict[str, list[dict]], summary: dict, path: Path) -> None:
             axes[0][column].plot([i * CYCLE_S for i in range(len(rows))], pos, lw=0.8, color=colours[name],
                                  label=label)
             axes[1][column].plot([i * CYCLE_S for i in range(len(rows))], head, lw=0.8, color=colours[name],
-                                 label=f"{name}: median {s['heading_median_deg']:.2f}°, p90 {s['heading_p90_deg']:.2f}°")
+                                 label=f"{name}: median {s['heading_median_deg']:.2f}°,"
+                                       f" p90 {s['heading_p90_deg']:.2f}°")
         axes[0][column].set_title(f"{scenario}")
         axes[0][column].set_yscale("log")
         axes[1][column].set_yscale("log")
@@ -213,7 +216,8 @@ def plot(results: dict[str, list[dict]], summary: dict, path: Path) -> None:
         axes[1][column].set_xlabel("scored time [s]")
         axes[0][column].legend(fontsize=7)
         axes[1][column].legend(fontsize=7)
-    fig.suptitle("Self-localization on our server (REFERENCE §3.5 noise): EKF (default) vs seed (triangulation + FIFO)")
+    fig.suptitle("Self-localization on our server (REFERENCE §3.5 noise): "
+                 "EKF (default) vs seed (triangulation + FIFO)")
     fig.tight_layout()
     path.parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(path, dpi=110)

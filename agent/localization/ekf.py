@@ -175,10 +175,11 @@ class EkfLocalizer:
         own variance plus the triangulation's explain (3 sigma), the motion model missed something (no
         odometry while walking, a push, a slip), so that variance grows to the squared discrepancy. Without
         this the gates would reject every landmark of a robot that moved unseen by the model."""
-        c, p, st = self.config, self.cov, self.state
-        for index, error, noise in ((0, guess.x_m - st[0], c["triangulation_sd_m"]),  # type: ignore[index]
-                                    (1, guess.y_m - st[1], c["triangulation_sd_m"]),  # type: ignore[index]
-                                    (2, wrap_angle_rad(guess.heading_rad - st[2]), c["triangulation_sd_rad"])):  # type: ignore[index]
+        c, p = self.config, self.cov
+        x, y, heading = self.state  # type: ignore[misc]
+        for index, error, noise in ((0, guess.x_m - x, c["triangulation_sd_m"]),
+                                    (1, guess.y_m - y, c["triangulation_sd_m"]),
+                                    (2, wrap_angle_rad(guess.heading_rad - heading), c["triangulation_sd_rad"])):
             if error * error > 9.0 * (p[index][index] + noise * noise):
                 p[index][index] = error * error
 

@@ -52,10 +52,10 @@ class FifoFilter:
 
     def add(self, estimate: Pose2D) -> Pose2D | None:
         """Feed one estimate; returns the new belief (None once a disagreement emptied the queue)."""
-        queue = self.queue
-        if not queue:
+        queue, mean = self.queue, self._mean
+        if not queue or mean is None:
             queue.append(estimate)
-        elif math.hypot(estimate.x_m - self._mean.x_m, estimate.y_m - self._mean.y_m) > self.agree_m:  # type: ignore[union-attr]
+        elif math.hypot(estimate.x_m - mean.x_m, estimate.y_m - mean.y_m) > self.agree_m:
             queue.popleft()
         elif len(queue) >= self.max_size:
             queue.popleft()
