@@ -227,6 +227,9 @@ def parse_actions(data: bytes | str) -> list[ParsedAction]:
             atom outside a list), with the byte offset.
     """
     text = ascii_text(data)
+    fast = _parse_joint_commands(text)
+    if fast is not None:
+        return fast
     nodes, _ = read_located(text)
     actions: list[ParsedAction] = []
     for node in nodes:
@@ -239,6 +242,31 @@ def parse_actions(data: bytes | str) -> list[ParsedAction]:
         except ProtocolError as error:
             actions.append(InvalidAction(str(head), node.offset, error.reason))
     return actions
+
+
+# The usual agent message, joint commands then (syn), in the exact spelling: parsed without building trees.
+_JOINT_OR_SYN = re.compile(r"\((?:(he[12]|[lr]ae[1-4]|[lr]le[1-7]) (-?\d++(?:\.\d++)?)|(syn))\)")
+_SYN = Syn()
+
+
+def _parse_joint_commands(text: str) -> list[ParsedAction] | None:
+    """The actions of a message made only of ``(EFF F)`` and ``(syn)``, or None (then the general path)."""
+    actions: list[ParsedAction] = []
+    append = actions.append
+    end = 0
+    new = object.__new__
+    set_field = object.__setattr__
+    for m in iter(_JOINT_OR_SYN.scanner(text).match, None):
+        if m.lastindex == 3:
+            append(_SYN)
+        else:
+            # The pattern already checked the effector name, so skip __post_init__'s second check.
+            action = new(JointVelocity)
+            set_field(action, "effector", m[1])
+            set_field(action, "velocity_rad_s", float(m[2]))
+            append(action)
+        end = m.end()
+    return actions if end == len(text) else None
 
 
 def _atoms(node: Node, counts: tuple[int, ...], text: str) -> list[Atom]:

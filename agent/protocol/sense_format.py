@@ -2,7 +2,8 @@
 
 Follows SimSpark's ``SexpParser``: ``(name`` + space + items joined by one space + ``)``, predicates
 concatenated with no separator, so an empty vision frame is ``(See )``; floats ``%.2f`` (with ``-0.00``),
-ints as ints (REFERENCE §1, §3.1). A parsed Sense carries its wire order and is written back byte for byte;
+ints as ints (REFERENCE §1, §3.1). The one byte difference left: a NaN is written ``nan`` even when glibc
+would write ``-nan`` (a server that sends NaN is broken either way). A parsed Sense carries its wire order and is written back byte for byte;
 a Sense built with ``order=()`` is written in the server's own order (REFERENCE §3.3).
 """
 
@@ -11,7 +12,6 @@ from __future__ import annotations
 import re
 
 from agent.protocol.errors import ProtocolError
-from agent.protocol.numbers import format_fixed2
 from agent.protocol.perceptors import (
     SEE_LINE,
     SEE_MYPOS,
@@ -21,7 +21,6 @@ from agent.protocol.perceptors import (
     ForceResistance,
     GameState,
     Hear,
-    Polar,
     See,
     Sense,
 )
@@ -73,6 +72,18 @@ def _server_layout(sense: Sense) -> tuple[list[str], list[ForceResistance]]:
     return order, frps
 
 
+# Templates: str.format with ".2f" is printf "%.2f" done in C, much cheaper per value than a Python call.
+# (It writes every NaN as "nan", where glibc writes "-nan" for a NaN with the sign bit set.)
+_HJ = "(HJ (n {}) (ax {:.2f}))".format
+_FRP = "(FRP (n {}) (c {:.2f} {:.2f} {:.2f}) (f {:.2f} {:.2f} {:.2f}))".format
+_TIME = "(time (now {:.2f}))".format
+_GYR = "(GYR (n {}) (rt {:.2f} {:.2f} {:.2f}))".format
+_ACC = "(ACC (n {}) (a {:.2f} {:.2f} {:.2f}))".format
+_OBJECT = "({} (pol {:.2f} {:.2f} {:.2f}))".format
+_PART = " ({} (pol {:.2f} {:.2f} {:.2f}))".format
+_LINE = "(L (pol {:.2f} {:.2f} {:.2f}) (pol {:.2f} {:.2f} {:.2f}))".format
+_MYPOS = "(mypos {:.2f} {:.2f} {:.2f})".format
+
 _ATOM_TEXT = r"[!-'*-~]+"
 _ATOM = re.compile(_ATOM_TEXT)
 _ATOM_LIST = re.compile(rf"{_ATOM_TEXT}(?: {_ATOM_TEXT})*")
@@ -95,7 +106,6 @@ def format_sense(sense: Sense) -> bytes:
         _check_counts(sense, order)
     else:
         order, frps = _server_layout(sense)  # type: ignore[assignment]
-    f2 = format_fixed2
     out: list[str] = []
     atoms: list[str] = []  # names and messages, checked at once at the end
     joints = iter(sense.joints.items())
@@ -104,30 +114,25 @@ def format_sense(sense: Sense) -> bytes:
     for kind in order:
         if kind == "HJ":
             name, angle_deg = next(joints)
-            out.append(f"(HJ (n {name}) (ax {f2(angle_deg)}))")
+            out.append(_HJ(name, angle_deg))
             atoms.append(name)
         elif kind == "FRP":
             frp = next(frp_iter)
-            (cx, cy, cz), (fx, fy, fz) = frp.contact_m, frp.force_n
-            out.append(
-                f"(FRP (n {frp.name}) (c {f2(cx)} {f2(cy)} {f2(cz)}) (f {f2(fx)} {f2(fy)} {f2(fz)}))"
-            )
+            out.append(_FRP(frp.name, *frp.contact_m, *frp.force_n))
             atoms.append(frp.name)
         elif kind == "See":
             out.append(_format_see(sense.see, atoms, out))  # type: ignore[arg-type]
         elif kind == "hear":
             out.append(_format_hear(next(hears), atoms))
         elif kind == "time":
-            out.append(f"(time (now {f2(sense.time.now_s)}))")  # type: ignore[union-attr]
+            out.append(_TIME(sense.time.now_s))  # type: ignore[union-attr]
         elif kind == "GS":
             out.append(_format_game_state(sense.game_state, atoms))  # type: ignore[arg-type]
         elif kind == "GYR":
-            x, y, z = sense.gyro.rate_deg_s  # type: ignore[union-attr]
-            out.append(f"(GYR (n {sense.gyro.name}) (rt {f2(x)} {f2(y)} {f2(z)}))")  # type: ignore[union-attr]
+            out.append(_GYR(sense.gyro.name, *sense.gyro.rate_deg_s))  # type: ignore[union-attr]
             atoms.append(sense.gyro.name)  # type: ignore[union-attr]
         elif kind == "ACC":
-            x, y, z = sense.acc.acc_m_s2  # type: ignore[union-attr]
-            out.append(f"(ACC (n {sense.acc.name}) (a {f2(x)} {f2(y)} {f2(z)}))")  # type: ignore[union-attr]
+            out.append(_ACC(sense.acc.name, *sense.acc.acc_m_s2))  # type: ignore[union-attr]
             atoms.append(sense.acc.name)  # type: ignore[union-attr]
         else:
             out.append(_format_agent_state(sense.agent_state))  # type: ignore[arg-type]
@@ -163,13 +168,7 @@ def _check_counts(sense: Sense, order: tuple[str, ...]) -> None:
         raise ProtocolError(f"Sense.order holds unknown predicate names {unknown}", 0, b"")
 
 
-def _polar_text(polar: Polar) -> str:
-    d, t, p = polar
-    return f"(pol {format_fixed2(d)} {format_fixed2(t)} {format_fixed2(p)})"
-
-
 def _format_see(see: See, atoms: list[str], out: list[str]) -> str:
-    f2 = format_fixed2
     layout = see.order or (
         SEE_OBJECT * len(see.objects)
         + SEE_PLAYER * len(see.players)
@@ -187,31 +186,30 @@ def _format_see(see: See, atoms: list[str], out: list[str]) -> str:
     for kind in layout:
         if kind == SEE_LINE:
             begin, end = next(lines)
-            items.append(f"(L {_polar_text(begin)} {_polar_text(end)})")
+            items.append(_LINE(*begin, *end))
         elif kind == SEE_OBJECT:
-            name, d, t, p = next(objects)
-            items.append(f"({name} (pol {f2(d)} {f2(t)} {f2(p)}))")
-            atoms.append(name)
+            visible = next(objects)
+            items.append(_OBJECT(*visible))
+            atoms.append(visible.name)
         elif kind == SEE_PLAYER:
             player = next(players)
             unum = "" if player.unum is None else f" (id {player.unum})"
-            parts = "".join(f" ({part} {_polar_text(polar)})" for part, polar in player.parts.items())
+            parts = "".join([_PART(part, *polar) for part, polar in player.parts.items()])
             items.append(f"(P (team {player.team}){unum}{parts})")
             atoms.append(player.team)
             atoms.extend(player.parts)
         else:
-            x, y, z = see.my_pos_m  # type: ignore[misc]
-            items.append(f"(mypos {f2(x)} {f2(y)} {f2(z)})")
+            items.append(_MYPOS(*see.my_pos_m))  # type: ignore[misc]
     return f"(See {' '.join(items)})"
 
 
 def _format_hear(hear: Hear, atoms: list[str]) -> str:
-    direction = "self" if hear.direction_deg is None else format_fixed2(hear.direction_deg)
+    direction = "self" if hear.direction_deg is None else f"{hear.direction_deg:.2f}"
     team = "" if hear.team is None else f"{hear.team} "
     if hear.team is not None:
         atoms.append(hear.team)
     atoms.append(hear.message)
-    return f"(hear {team}{format_fixed2(hear.game_time_s)} {direction} {hear.message})"
+    return f"(hear {team}{hear.game_time_s:.2f} {direction} {hear.message})"
 
 
 def _format_game_state(state: GameState, atoms: list[str]) -> str:
@@ -225,7 +223,7 @@ def _format_game_state(state: GameState, atoms: list[str]) -> str:
         items.append(f"(sl {state.score_left})")
     if state.score_right is not None:
         items.append(f"(sr {state.score_right})")
-    items.append(f"(t {format_fixed2(state.game_time_s)})")
+    items.append(f"(t {state.game_time_s:.2f})")
     items.append(f"(pm {state.play_mode})")
     atoms.append(state.play_mode)
     return f"(GS {' '.join(items)})"
@@ -236,7 +234,7 @@ def _format_agent_state(state: AgentState) -> str:
     if state.pan_deg is not None and state.tilt_deg is not None:
         items.append(f"(pan_tilt {state.pan_deg} {state.tilt_deg})")
     if state.battery is not None:
-        items.append(f"(battery {format_fixed2(state.battery)})")
+        items.append(f"(battery {state.battery:.2f})")
     if state.temperature is not None:
-        items.append(f"(temp {format_fixed2(state.temperature)})")
+        items.append(f"(temp {state.temperature:.2f})")
     return f"(AgentState {' '.join(items)})"

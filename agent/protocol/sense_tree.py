@@ -1,9 +1,9 @@
-"""Typed perceptors from located S-expression trees: the general path of sense parsing.
+"""The general path of sense parsing: located S-expression trees -> typed perceptors -> Sense.
 
-:func:`~agent.protocol.sense.parse_sense` matches the server's exact spelling with compiled patterns and
-hands every predicate those patterns do not recognise here: unknown predicates, foreign spacing, extra
-sub-items, or malformed input that needs a precise error. This module is also the reference the fast path is
-tested against (``parse_sense(data, fast_path=False)`` uses it for everything).
+:func:`~agent.protocol.sense.parse_sense` first tries compiled patterns for the server's exact spelling;
+every message they do not fully recognise comes here: unknown predicates, foreign spacing, extra sub-items,
+or malformed input that needs a precise error. This module is also the reference the fast path is tested
+against (``parse_sense(data, fast_path=False)`` uses only it).
 
 Rules: an unknown predicate, or an unknown ``(key ...)`` list inside a known one, is skipped and counted; a
 known key with the wrong shape, a bad number or an atom where a list belongs is a ProtocolError at the
@@ -30,16 +30,35 @@ from agent.protocol.perceptors import (
     HingeJoint,
     Polar,
     See,
+    Sense,
     TimePerceptor,
     VisibleLine,
     VisibleObject,
     VisiblePlayer,
 )
-from agent.protocol.sexpr import Atom, Node
+from agent.protocol.sexpr import Atom, Node, read_located
 
 Perceptor = (
     TimePerceptor | GameState | Gyro | Accelerometer | HingeJoint | ForceResistance | Hear | See | AgentState
 )
+
+
+def parse_sense_general(text: str) -> Sense:
+    """A whole sense message (already checked by :func:`~agent.protocol.sexpr.ascii_text`) -> Sense.
+
+    Raises:
+        ProtocolError: as :func:`~agent.protocol.sense.parse_sense`.
+    """
+    accumulator = _Accumulator()
+    pos = 0
+    while True:
+        nodes, pos = read_located(text, pos, limit=1)
+        if not nodes:
+            return accumulator.sense()
+        perceptor, unknown = perceptor_from_tree(nodes[0], text)
+        accumulator.unknown += unknown
+        if perceptor is not None:
+            accumulator.add(perceptor, nodes[0].offset, text)
 
 
 def perceptor_from_tree(node: Node, text: str) -> tuple[Perceptor | None, int]:
@@ -257,3 +276,70 @@ _CONVERTERS: dict[str, Callable[[Node, str], tuple[Perceptor, int]]] = {
     "See": _see,
     "AgentState": _agent_state,
 }
+
+
+#: Perceptor type -> (Sense field, predicate name) for the predicates a message holds at most once.
+_SINGLE: dict[type, tuple[str, str]] = {
+    TimePerceptor: ("time", "time"),
+    GameState: ("game_state", "GS"),
+    Gyro: ("gyro", "GYR"),
+    Accelerometer: ("acc", "ACC"),
+    See: ("see", "See"),
+    AgentState: ("agent_state", "AgentState"),
+}
+
+
+class _Accumulator:
+    """The fields of the Sense being parsed; rejects a predicate given twice (the server never does)."""
+
+    __slots__ = ("fields", "joints", "frp", "hears", "order", "unknown")
+
+    def __init__(self) -> None:
+        self.fields: dict[str, object] = {}
+        self.joints: dict[str, float] = {}
+        self.frp: dict[str, ForceResistance] = {}
+        self.hears: list[Hear] = []
+        self.order: list[str] = []
+        self.unknown = 0
+
+    def add(self, perceptor: Perceptor, offset: int, text: str) -> None:
+        kind = type(perceptor)
+        if kind is HingeJoint:
+            if perceptor.name in self.joints:  # type: ignore[union-attr]
+                raise _twice(f"HJ {perceptor.name}", text, offset)  # type: ignore[union-attr]
+            self.joints[perceptor.name] = perceptor.angle_deg  # type: ignore[union-attr]
+            self.order.append("HJ")
+        elif kind is ForceResistance:
+            if perceptor.name in self.frp:  # type: ignore[union-attr]
+                raise _twice(f"FRP {perceptor.name}", text, offset)  # type: ignore[union-attr]
+            self.frp[perceptor.name] = perceptor  # type: ignore[union-attr, assignment]
+            self.order.append("FRP")
+        elif kind is Hear:
+            self.hears.append(perceptor)  # type: ignore[arg-type]
+            self.order.append("hear")
+        else:
+            field_name, predicate = _SINGLE[kind]
+            if field_name in self.fields:
+                raise _twice(predicate, text, offset)
+            self.fields[field_name] = perceptor
+            self.order.append(predicate)
+
+    def sense(self) -> Sense:
+        get = self.fields.get
+        return Sense(
+            get("time"),  # type: ignore[arg-type]
+            get("game_state"),  # type: ignore[arg-type]
+            get("gyro"),  # type: ignore[arg-type]
+            get("acc"),  # type: ignore[arg-type]
+            self.joints,
+            self.frp,
+            tuple(self.hears),
+            get("see"),  # type: ignore[arg-type]
+            get("agent_state"),  # type: ignore[arg-type]
+            self.unknown,
+            tuple(self.order),
+        )
+
+
+def _twice(what: str, text: str, offset: int) -> ProtocolError:
+    return ProtocolError.at(f"{what} given twice in one message", text, offset)

@@ -179,3 +179,16 @@ def test_parsing_gives_the_typed_command_back() -> None:
         PassMode(),
         Syn(),
     ]
+
+
+@given(st.lists(st.tuples(st.sampled_from(["he1", "lae4", "rle6", "syn"]),
+                          st.floats(min_value=-50, max_value=50)), max_size=25))
+def test_the_joint_command_fast_path_agrees_with_the_general_reader(commands: list[tuple[str, float]]) -> None:
+    actions = [Syn() if name == "syn" else JointVelocity(name, value) for name, value in commands]
+    wire = format_actions(actions)  # type: ignore[arg-type]
+    fast = parse_actions(wire)  # only joints and syn: the fast path
+    general = parse_actions(wire + b"(pass)")  # a (pass) sends the whole message down the general path
+    assert general[-1] == PassMode()
+    assert fast == general[:-1]
+    assert all(type(a) is type(b) for a, b in zip(fast, general))
+    assert format_actions(fast) == wire  # type: ignore[arg-type]
