@@ -256,7 +256,9 @@ def _parse_joint_commands(text: str) -> list[ParsedAction] | None:
     end = 0
     new = object.__new__
     set_field = object.__setattr__
-    for m in iter(_JOINT_OR_SYN.scanner(text).match, None):
+    for m in _JOINT_OR_SYN.finditer(text):
+        if m.start() != end:
+            return None  # something between two commands
         if m.lastindex == 3:
             append(_SYN)
         else:

@@ -47,13 +47,13 @@ def _typed(token: str) -> str | int | float:
 
 
 def test_every_scene_number_is_spelled_like_cpp_ostream() -> None:
-    numbers = []
+    numbers: list[str] = []
 
     def walk(node: list[object]) -> None:
         for item in node:
             if isinstance(item, list):
                 walk(item)
-            elif _NUMBER.match(item):  # type: ignore[arg-type]
+            elif isinstance(item, str) and _NUMBER.match(item):
                 numbers.append(item)
 
     for line in monitor_lines():

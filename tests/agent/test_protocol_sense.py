@@ -152,6 +152,7 @@ def test_sample_content_is_typed() -> None:
     first_gs = parse_sense(messages[2]).game_state
     assert first_gs == GameState(1, "left", 0, 0, 0.0, "BeforeKickOff")
     sense = parse_sense(vision_message())
+    assert sense.see is not None and sense.time is not None
     assert len(sense.joints) == 22 and set(sense.frp) == {"lf", "rf"}
     assert [p.team for p in sense.see.players] == ["CapL", "CapR"]
     assert sense.time.now_s > 77.0
@@ -185,6 +186,7 @@ def test_unknown_predicates_and_keys_are_skipped_and_counted() -> None:
                b"(HJ (n hj1) (ax 2.00))(See (B (pol 1.00 2.00 3.00)) (X (odd 1)))(zz)")
     sense = parse_both(message)
     assert sense.unknown == 4  # foo, (k left), (X (odd 1)), zz
+    assert sense.game_state is not None and sense.see is not None
     assert sense.game_state.play_mode == "PlayOn"
     assert sense.joints == {"hj1": 2.0}
     assert sense.see.objects == (VisibleObject("B", 1.0, 2.0, 3.0),)
