@@ -2,9 +2,11 @@
 
 Run: ``python benchmarks/bench_agent.py [--json] [--repeats N]``. Feeds every recorded message of each trace
 to fresh agents in order (so init, beam, localization and say run as in a game) and times each call.
-Traces: the real 0.7.3 two-agent sample (tests/agent/fixtures) and, when present, our server's trace
-(tests/agent/fixtures/oursim_*.jsonl). Prints median, p90, p99 and max microseconds per step, all cycles
-and vision cycles only. Goal: median <= 1 ms, p99 <= 3 ms.
+Traces: the real 0.7.3 two-agent sample (tests/agent/fixtures), our server's trace when present
+(tests/agent/fixtures/oursim_*.jsonl), and a crowd made now on our server (sim.inprocess, 11 v 11 agents
+beamed to their formation spots, 200 cycles; the messages of Home #9, who sees about 12 robots and 4 kB
+per vision message; ``--no-crowd`` skips it). Prints median, p90, p99 and max microseconds per step, all
+cycles and vision cycles only. Goal: median <= 1 ms, p99 <= 3 ms.
 """
 
 from __future__ import annotations
@@ -40,16 +42,32 @@ def traces() -> dict[str, tuple[str, list[bytes]]]:
     return out
 
 
+def crowd_trace(cycles: int = 200) -> tuple[str, list[bytes]]:
+    """Home #9's sense messages in an 11 v 11 game on our server (in-process, no rules, formation beams)."""
+    from sim.engine import FrozenReferee, SimEngine
+    from sim.inprocess import InProcessHost
+
+    host = InProcessHost(SimEngine(seed=4, referee=FrozenReferee()), record=True)
+    ids = {}
+    for team in ("Home", "Away"):
+        for unum in range(1, 12):
+            ids[(team, unum)] = host.add(Agent(AgentConfig(team, unum)))
+            host.run(3)  # one after another: robots built in the same cycle collide
+    host.run(cycles)
+    target = ids[("Home", 9)]
+    return "Home", [message for _, agent_id, message in host.stats.transcript if agent_id == target]
+
+
 def percentile(values: list[float], q: float) -> float:
     ordered = sorted(values)
     return ordered[min(len(ordered) - 1, int(round(q / 100.0 * (len(ordered) - 1))))]
 
 
-def measure(team: str, messages: list[bytes], repeats: int) -> dict[str, float]:
+def measure(team: str, messages: list[bytes], repeats: int, unum: int = 1) -> dict[str, float]:
     all_us: list[float] = []
     vision_us: list[float] = []
     for _ in range(repeats):
-        agent = Agent(AgentConfig(team, 1))
+        agent = Agent(AgentConfig(team, unum))
         for message in messages:
             start = time.perf_counter_ns()
             agent.step(message)
@@ -72,9 +90,13 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--json", action="store_true", help="print one JSON object")
     parser.add_argument("--repeats", type=int, default=5, help="passes over each trace (fresh agents)")
+    parser.add_argument("--no-crowd", action="store_true", help="skip the 11 v 11 trace made on our server")
     args = parser.parse_args()
     Agent(AgentConfig("Warmup", 1))  # import and build the kinematics model before timing
-    results = {name: measure(team, messages, args.repeats) for name, (team, messages) in traces().items()}
+    all_traces = traces()
+    if not args.no_crowd:
+        all_traces["oursim-11v11-crowd"] = crowd_trace()
+    results = {name: measure(team, messages, args.repeats) for name, (team, messages) in all_traces.items()}
     if args.json:
         print(json.dumps({"python": platform.python_version(), "goals_us": GOALS_US, "traces": results}))
         return
