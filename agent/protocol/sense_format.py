@@ -2,9 +2,10 @@
 
 Follows SimSpark's ``SexpParser``: ``(name`` + space + items joined by one space + ``)``, predicates
 concatenated with no separator, so an empty vision frame is ``(See )``; floats ``%.2f`` (with ``-0.00``),
-ints as ints (REFERENCE §1, §3.1). The one byte difference left: a NaN is written ``nan`` even when glibc
-would write ``-nan`` (a server that sends NaN is broken either way). A parsed Sense carries its wire order and is written back byte for byte;
-a Sense built with ``order=()`` is written in the server's own order (REFERENCE §3.3).
+ints as ints (REFERENCE §1, §3.1). A parsed Sense carries its wire order and is written back byte for byte;
+a Sense built with ``order=()`` is written in the server's own order (REFERENCE §3.3). The one byte
+difference left: a NaN is written ``nan`` even where glibc would write ``-nan`` (a server that sends NaN is
+broken either way).
 """
 
 from __future__ import annotations
@@ -39,6 +40,9 @@ def _server_layout(sense: Sense) -> tuple[list[str], list[ForceResistance]]:
     ``time``, ``GS``, the hears, ``GYR``, ``ACC``, then the joints in ``sense.joints`` order with ``See``
     after ``hj2`` and each FRP before the joint that follows its foot; ``AgentState`` last. Anything without
     its anchor (a See without ``hj2``, an FRP of another name) follows the joints.
+
+    Returns:
+        (predicate names in order, the FRPs in the order their ``FRP`` entries appear).
     """
     order: list[str] = []
     if sense.time is not None:
@@ -50,19 +54,24 @@ def _server_layout(sense: Sense) -> tuple[list[str], list[ForceResistance]]:
         order.append("GYR")
     if sense.acc is not None:
         order.append("ACC")
-    frp_at_joint = {_FRP_BEFORE_JOINT.get(name): frp for name, frp in sense.frp.items()}
+    frp_at_joint: dict[str, ForceResistance] = {}
+    leftover: list[ForceResistance] = []  # FRPs without their anchor joint, or of an unknown name: after the joints
+    for name, frp in sense.frp.items():
+        anchor = _FRP_BEFORE_JOINT.get(name)
+        if anchor is not None and anchor in sense.joints:
+            frp_at_joint[anchor] = frp
+        else:
+            leftover.append(frp)
     frps: list[ForceResistance] = []
     see_pending = sense.see is not None
     for joint in sense.joints:
-        frp = frp_at_joint.pop(joint, None)
-        if frp is not None:
+        if joint in frp_at_joint:
             order.append("FRP")
-            frps.append(frp)
+            frps.append(frp_at_joint[joint])
         order.append("HJ")
         if see_pending and joint == _SEE_AFTER_JOINT:
             order.append("See")
             see_pending = False
-    leftover = [frp for frp in sense.frp.values() if frp not in frps]
     order += ["FRP"] * len(leftover)
     frps += leftover
     if see_pending:

@@ -50,7 +50,13 @@ def ascii_text(data: bytes | str) -> str:
     Raises:
         ProtocolError: at the first byte outside ``[ \\t\\n\\r!-~]``.
     """
-    raw = data.encode("latin-1", "replace") if isinstance(data, str) else data
+    if isinstance(data, str):
+        if not data.isascii():  # all earlier characters are ASCII, so the index is a byte offset too
+            offset = next(index for index, char in enumerate(data) if not char.isascii())
+            raise ProtocolError.at(f"character {data[offset]!r} is not ASCII", data, offset)
+        raw = data.encode("ascii")
+    else:
+        raw = data
     if raw.translate(None, _ALLOWED_BYTES):  # bytes are left over: find the first (rare, slower)
         bad = _BAD_BYTE.search(raw)
         offset = bad.start() if bad is not None else 0

@@ -52,6 +52,15 @@ def test_malformed_input_names_the_byte_offset(data: bytes, offset: int, words: 
     assert error.value.snippet == data[max(0, offset - 24) : offset + 24]
 
 
+def test_text_input_must_be_ascii_too() -> None:
+    with pytest.raises(ProtocolError) as error:
+        parse_sexpr("(say \u65e5\u672c)")  # not Latin-1 either: must not turn into "?"
+    assert error.value.offset == 5
+    with pytest.raises(ProtocolError) as error:
+        parse_sexpr("(a \t\x01)")
+    assert error.value.offset == 4
+
+
 def test_unclosed_list_error_names_where_it_opened() -> None:
     with pytest.raises(ProtocolError) as error:
         parse_sexpr(b"(time (now 1.00))(HJ (n hj1) (ax 1.00)")
