@@ -283,3 +283,17 @@ def test_a_name_that_is_not_an_atom_is_refused(name: str) -> None:
         format_sense(Sense(None, None, None, None, {name: 1.0}))
     with pytest.raises(ProtocolError):
         format_sense(Sense(None, None, None, None, {}, hears=(Hear("A", 0.0, None, name),)))
+
+
+def test_foot_sensors_without_their_anchor_joint_follow_the_joints() -> None:
+    toe = ForceResistance("rf1", (0.0, 0.0, 0.0), (0.0, 0.0, 1.0))
+    odd = ForceResistance("xx", (0.0, 0.0, 0.0), (0.0, 0.0, 2.0))
+    with_toe = Sense(None, None, None, None, {"rlj6": 1.0, "rlj7": 2.0}, frp={"rf1": toe, "xx": odd})
+    assert format_sense(with_toe) == (  # type 4: the toe sensor before the toe joint (by analogy)
+        b"(HJ (n rlj6) (ax 1.00))(FRP (n rf1) (c 0.00 0.00 0.00) (f 0.00 0.00 1.00))(HJ (n rlj7) (ax 2.00))"
+        b"(FRP (n xx) (c 0.00 0.00 0.00) (f 0.00 0.00 2.00))"
+    )
+    without_anchor = Sense(None, None, None, None, {"hj1": 0.5}, frp={"rf1": toe})
+    assert format_sense(without_anchor) == (
+        b"(HJ (n hj1) (ax 0.50))(FRP (n rf1) (c 0.00 0.00 0.00) (f 0.00 0.00 1.00))"
+    )
