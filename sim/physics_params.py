@@ -50,7 +50,7 @@ class PhysicsParams:
     """MuJoCo steps per cycle; timestep = cycle_s / substeps."""
     gravity_m_s2: float = 9.81
     """Gravity magnitude [m/s²] (REFERENCE §2.4)."""
-    motor_kv: float = 1.0e4
+    motor_kv: float = 1.0e5
     """Servo gain of the joint motors [N·m·s/rad]: steady velocity error = load / kv."""
     motor_max_torque_nm: float = 10.0
     """Motor force bound (FMax, REFERENCE §2.2) [N·m]; the per-joint value in the spec wins."""
@@ -62,8 +62,18 @@ class PhysicsParams:
     """Coulomb friction coefficient of every contact (SimSpark: unbounded, see the docstring)."""
     contact_condim: int = 3
     """Contact dimensionality (3 = normal + 2 tangential)."""
+    contact_solref: tuple[float, float] = (0.02, 1.0)
+    """solref of every contact (time constant [s], damping ratio)."""
+    contact_solimp: tuple[float, float, float, float, float] = (0.2, 0.3, 0.001, 0.5, 2.0)
+    """solimp of every contact: soft enough that a loaded foot sinks ~0.5 mm, as ODE's 1 mm surface layer
+    lets it (calibrated on the real 0.7.3 traces, see the module docstring)."""
     cone: str = "elliptic"
     """Friction cone: "elliptic" or "pyramidal"."""
+    ball_solref: tuple[float, float] = (0.02, 1.0)
+    """solref of the ball's contacts (MuJoCo's default)."""
+    ball_solimp: tuple[float, float, float, float, float] = (0.9, 0.95, 0.001, 0.5, 2.0)
+    """solimp of the ball's contacts: stiff (MuJoCo's default), so the light ball neither sinks into the
+    ground nor rolls out early; it wins the parameter mix of every ball contact."""
     ball_restitution: float = 0.8
     """Ball bounce (REFERENCE §2.4)."""
     ball_min_bounce_speed_m_s: float = 0.8

@@ -31,6 +31,8 @@ _TAN_HALF_FOV = math.tan(math.radians(HALF_FOV_DEG))
 _SIGMAS = np.array([0.0, SIGMA_THETA_DEG, SIGMA_PHI_DEG])
 _PARTS_PER_PLAYER = 5
 _new_polar = partial(tuple.__new__, Polar)
+_new_object = partial(tuple.__new__, VisibleObject)
+_new_line = partial(tuple.__new__, VisibleLine)
 # Inward normals of the view pyramid's planes in the head frame (x right, y ahead, z up).
 _PLANES = np.array([[-1.0, _TAN_HALF_FOV, 0.0], [1.0, _TAN_HALF_FOV, 0.0],
                     [0.0, _TAN_HALF_FOV, -1.0], [0.0, _TAN_HALF_FOV, 1.0]])
@@ -164,17 +166,17 @@ def _clip_to_pyramid(segments: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 def _frame(seen: list[int], values: list[list[float]], line_values: list[list[float]],
            names: tuple[str, ...], players: list[PlayerParts]) -> See:
     fixed_count = len(names)
-    objects: list[VisibleObject] = []
+    objects = []
     parts: dict[int, dict[str, Polar]] = {}
-    new_polar = _new_polar
-    for point, (d, t, p) in zip(seen, values):
+    new_polar, new_object = _new_polar, _new_object
+    for point, value in zip(seen, values):
         if point < fixed_count:
-            objects.append(VisibleObject(names[point], d, t, p))
+            objects.append(new_object((names[point], *value)))
         else:
             owner, part = divmod(point - fixed_count, _PARTS_PER_PLAYER)
-            parts.setdefault(owner, {})[players[owner].part_names[part]] = new_polar((d, t, p))
+            parts.setdefault(owner, {})[players[owner].part_names[part]] = new_polar(value)
     seen_players = tuple(VisiblePlayer(players[owner].team, players[owner].unum, parts[owner])
                          for owner in sorted(parts))
-    lines = tuple(VisibleLine(new_polar(line_values[i]), new_polar(line_values[i + 1]))
-                  for i in range(0, len(line_values), 2))
+    ends = list(map(new_polar, line_values))
+    lines = tuple(map(_new_line, zip(ends[0::2], ends[1::2])))
     return See(tuple(objects), seen_players, lines)

@@ -117,12 +117,14 @@ class World:
         for geom in add_static_geometry(spec):
             geom.contype, geom.conaffinity = _WORLD_BIT, _ALL_BITS
             geom.condim = p.contact_condim
+            geom.solref, geom.solimp = list(p.contact_solref), list(p.contact_solimp)
             geom.friction = [p.friction, 0.005, 0.0001]
         ball = spec.worldbody.add_body(name="ball", pos=[0.0, 0.0, BALL_RADIUS_M])
         ball.add_freejoint(name="ball")
         ball.add_geom(name="ball", type=mujoco.mjtGeom.mjGEOM_SPHERE, size=[BALL_RADIUS_M, 0, 0],
                       mass=BALL_MASS_KG, contype=_BALL_BIT, conaffinity=_ALL_BITS, condim=p.contact_condim,
-                      friction=[p.friction, 0.005, 0.0001], rgba=[1.0, 0.5, 0.0, 1.0])
+                      friction=[p.friction, 0.005, 0.0001], rgba=[1.0, 0.5, 0.0, 1.0], solref=list(p.ball_solref),
+                      solimp=list(p.ball_solimp), solmix=1e6)   # the ball's own parameters win every contact
         return spec
 
     def add_robot(self, key: int, robot_type: int = 0,
@@ -147,6 +149,7 @@ class World:
         p = self.params
         for geom in child.geoms:
             geom.condim = p.contact_condim
+            geom.solref, geom.solimp = list(p.contact_solref), list(p.contact_solimp)
             geom.friction = [p.friction, 0.005, 0.0001]
         for joint in child.joints:
             if joint.name != "root":
@@ -404,26 +407,32 @@ class World:
         self._ball_touchers = sorted(set(self._ball_touchers))
         # Foot sensors (REFERENCE §3.4): |f|-weighted mean contact point and summed force, foot frame.
         s1, s2 = self.geom_sensor[g1], self.geom_sensor[g2]
-        on1, on2 = s1 >= 0, s2 >= 0
-        if not (on1.any() or on2.any()):
+        on = (s1 >= 0) | (s2 >= 0)
+        if not on.any():
             return
-        forces = _contact_forces_world(m, d)                  # on geom2, world frame
-        slots = np.concatenate([s2[on2], s1[on1]])
-        force = np.concatenate([forces[on2], -forces[on1]])
-        pos = np.concatenate([d.contact.pos[on2], d.contact.pos[on1]])
+        index = np.nonzero(on)[0]
+        forces = _contact_forces_world(m, d, index)              # on geom2, world frame
+        sign = np.where(s2[index] >= 0, 1.0, -1.0)[:, None]       # force on the sensor's geom
+        slots = np.where(s2[index] >= 0, s2[index], s1[index])
+        force = forces * sign
+        pos = d.contact.pos[index]
         weight = np.sqrt((force * force).sum(axis=1))
-        count = self.sensor_geom.size
-        active = np.bincount(slots, minlength=count) > 0
-        wsum = np.bincount(slots, weights=weight, minlength=count)
-        fsum = np.stack([np.bincount(slots, weights=force[:, k], minlength=count) for k in range(3)], axis=1)
-        psum = np.stack([np.bincount(slots, weights=pos[:, k] * weight, minlength=count) for k in range(3)], axis=1)
-        plain = np.stack([np.bincount(slots, weights=pos[:, k], minlength=count) for k in range(3)], axis=1)
-        hits = np.maximum(np.bincount(slots, minlength=count), 1)[:, None]
-        centre = np.where(wsum[:, None] > 0, psum / np.where(wsum > 0, wsum, 1.0)[:, None], plain / hits)
+        rows = np.empty((index.size, 10))
+        rows[:, 0:3] = force
+        rows[:, 3:6] = pos * weight[:, None]
+        rows[:, 6] = weight
+        rows[:, 7:10] = pos
+        sums = np.zeros((self.sensor_geom.size, 10))
+        np.add.at(sums, slots, rows)
+        counts = np.bincount(slots, minlength=self.sensor_geom.size)
+        # A contact inside the detection margin but carrying no force is no touch for the sensor.
+        active = sums[:, 6] > 1e-9
+        wsum = np.where(active, sums[:, 6], 1.0)[:, None]
+        centre = np.where(active[:, None], sums[:, 3:6] / wsum, sums[:, 7:10] / np.maximum(counts, 1)[:, None])
         bodies = self.sensor_body
         rotation = d.xmat[bodies].reshape(-1, 3, 3)
         self.frp_point = np.einsum("sji,sj->si", rotation, centre - d.xpos[bodies])
-        self.frp_force = np.einsum("sji,sj->si", rotation, fsum)
+        self.frp_force = np.einsum("sji,sj->si", rotation, sums[:, 0:3])
         self.frp_active = active
 
     # ---- sensor readings ------------------------------------------------------------------------------
@@ -536,20 +545,19 @@ def _quat_to_matrix_batch(quat: np.ndarray) -> np.ndarray:
     return out
 
 
-def _contact_forces_world(m: mujoco.MjModel, d: mujoco.MjData) -> np.ndarray:
-    """Force of every contact on its geom2 in the world frame, (ncon, 3), decoded from the solver rows.
+def _contact_forces_world(m: mujoco.MjModel, d: mujoco.MjData, index: np.ndarray) -> np.ndarray:
+    """Force of the contacts ``index`` on their geom2 in the world frame, (k, 3), from the solver rows.
 
     Vectorised for condim 3 (pyramidal: 4 edge rows, normal = their sum, tangent i = mu_i (f_2i - f_2i+1);
     elliptic: the rows are the normal and tangential components); other cases use mj_contactForce.
     """
     contact = d.contact
-    n = d.ncon
-    adr, dim = contact.efc_address, contact.dim
-    local = np.zeros((n, 3))
+    adr, dim = contact.efc_address[index], contact.dim[index]
+    local = np.zeros((index.size, 3))
     three = (adr >= 0) & (dim == 3)
     if m.opt.cone == mujoco.mjtCone.mjCONE_PYRAMIDAL:
         rows = d.efc_force[adr[three, None] + np.arange(4)]
-        mu = contact.friction[three, :2]
+        mu = contact.friction[index[three], :2]
         local[three, 0] = rows.sum(axis=1)
         local[three, 1] = mu[:, 0] * (rows[:, 0] - rows[:, 1])
         local[three, 2] = mu[:, 1] * (rows[:, 2] - rows[:, 3])
@@ -557,9 +565,9 @@ def _contact_forces_world(m: mujoco.MjModel, d: mujoco.MjData) -> np.ndarray:
         local[three] = d.efc_force[adr[three, None] + np.arange(3)]
     buffer = np.zeros(6)
     for i in np.nonzero((adr >= 0) & (dim != 3))[0]:
-        mujoco.mj_contactForce(m, d, int(i), buffer)
+        mujoco.mj_contactForce(m, d, int(index[i]), buffer)
         local[i] = buffer[:3]
-    frame = contact.frame.reshape(n, 3, 3)     # rows: normal, tangent1, tangent2
+    frame = contact.frame[index].reshape(-1, 3, 3)     # rows: normal, tangent1, tangent2
     return np.einsum("ni,nij->nj", local, frame)
 
 

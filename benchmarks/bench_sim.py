@@ -1,0 +1,42 @@
+"""Simulation speed on one core: in-process agents against sim.engine (figures, never assertions).
+
+Run: ``python benchmarks/bench_sim.py [--robots N ...] [--cycles C] [--json]`` (or ``motion-studio bench sim``).
+Each agent parses its whole sense message and answers 22 joint velocities every cycle (sim.benchmark).
+Targets: 1 robot >= 100x real time, 22 robots >= 5x.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+if str(ROOT) not in sys.path:  # runnable as a plain script from any directory
+    sys.path.insert(0, str(ROOT))
+
+from sim.benchmark import TARGET_REALTIME_FACTOR, run  # noqa: E402
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--robots", type=int, nargs="+", default=[1, 22], help="robot counts to time")
+    parser.add_argument("--cycles", type=int, default=500, help="timed cycles per run (20 ms each)")
+    parser.add_argument("--json", action="store_true", help="one JSON object per line")
+    args = parser.parse_args(argv)
+    for robots in args.robots:
+        figures = run(robots, args.cycles).as_dict()
+        if args.json:
+            print(json.dumps(figures))
+            continue
+        target = TARGET_REALTIME_FACTOR.get(robots)
+        goal = f" (target {target:g}x)" if target else ""
+        print(f"{robots:2d} robots: {figures['realtime_factor']:6.1f}x real time{goal}, physics alone "
+              f"{figures['raw_mujoco_realtime_factor']:.1f}x, {figures['wall_seconds']:.2f} s for "
+              f"{figures['sim_seconds']:.1f} s simulated")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
