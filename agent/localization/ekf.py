@@ -44,6 +44,7 @@ def default_config() -> dict[str, float]:
         "line_match_m": 0.6,  # [m] max end point distance to a model line to match it
         "line_match_rad": math.radians(12.0),  # [rad] max angle between a seen and a model line
         "line_min_length_m": 0.4,  # [m] shorter seen segments are ignored (direction unreliable)
+        "max_lines": 8,  # the longest this many seen segments per frame are used
         "line_max_heading_sd_rad": math.radians(6.0),  # [rad] use lines only when the heading is this sure
         "gate_chi2": 12.0,  # Mahalanobis gate for one scalar measurement (about 3.5 sigma)
         "triangulation_sd_m": 0.05,  # [m] typical single-frame triangulation error (for the widening test)
@@ -82,12 +83,26 @@ class EkfLocalizer:
         config.update(overrides)
         self.config = config
         self.landmarks = dict(landmarks)
-        self._lines = []
+        # Model lines as (unit direction, unit normal, offset along the normal, extent along the direction),
+        # bucketed so a seen segment is only compared with lines of about its direction: along x, along y,
+        # other (the centre-circle chords, compared only near the circle).
+        self._lines_x: list[tuple[float, ...]] = []
+        self._lines_y: list[tuple[float, ...]] = []
+        self._lines_other: list[tuple[float, ...]] = []
+        self._other_radius = (math.inf, 0.0)
         for (ax, ay), (bx, by) in lines:
             length = math.hypot(bx - ax, by - ay)
             ux, uy = (bx - ax) / length, (by - ay) / length
-            # unit direction, unit normal, offset along the normal, extent along the direction
-            self._lines.append((ux, uy, -uy, ux, -uy * ax + ux * ay, ux * ax + uy * ay, ux * bx + uy * by))
+            line = (ux, uy, -uy, ux, -uy * ax + ux * ay, ux * ax + uy * ay, ux * bx + uy * by)
+            if abs(uy) < 1e-9:
+                self._lines_x.append(line)
+            elif abs(ux) < 1e-9:
+                self._lines_y.append(line)
+            else:
+                self._lines_other.append(line)
+                near, far = self._other_radius
+                middle = math.hypot((ax + bx) / 2, (ay + by) / 2)
+                self._other_radius = (min(near, middle), max(far, math.hypot(ax, ay), math.hypot(bx, by)))
         self.state: list[float] | None = None
         self.cov: list[list[float]] = [[0.0] * 3 for _ in range(3)]
         self._disagreements = 0
@@ -214,17 +229,23 @@ class EkfLocalizer:
         c = self.config
         sin_max = math.sin(c["line_match_rad"])
         match_m = c["line_match_m"]
-        for (af, al), (bf, bl) in frame.lines:
-            length = math.hypot(bf - af, bl - al)
+        # The longest segments carry most of the information; a cap keeps the per-frame cost bounded.
+        segments = sorted(((math.hypot(b[0] - a[0], b[1] - a[1]), a, b) for a, b in frame.lines), reverse=True)
+        for length, (af, al), (bf, bl) in segments[:int(c["max_lines"])]:
             if length < c["line_min_length_m"]:
-                continue
+                break
             x, y, th = self.state  # type: ignore[misc]
             cs, sn = math.cos(th), math.sin(th)
             ax, ay = x + cs * af - sn * al, y + sn * af + cs * al
             bx, by = x + cs * bf - sn * bl, y + sn * bf + cs * bl
             dx, dy = (bx - ax) / length, (by - ay) / length
+            candidates = self._lines_x if abs(dy) <= sin_max else self._lines_y if abs(dx) <= sin_max else ()
+            near, far = self._other_radius
+            if min(math.hypot(ax, ay), math.hypot(bx, by)) < far + match_m and \
+                    max(math.hypot(ax, ay), math.hypot(bx, by)) > near - match_m:
+                candidates = [*candidates, *self._lines_other]
             best, best_cost = None, math.inf
-            for line in self._lines:  # cheapest tests first: this loop runs ~20 x 20 times per frame
+            for line in candidates:  # cheapest tests first
                 ux, uy, nx, ny, offset, lo, hi = line
                 sin_angle = abs(dx * uy - dy * ux)
                 if sin_angle > sin_max:
