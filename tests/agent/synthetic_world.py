@@ -12,7 +12,7 @@ import random
 
 import numpy as np
 
-from agent.protocol import (GameState, Gyro, Accelerometer, Hear, Polar, See, Sense, TimePerceptor, VisibleLine,
+from agent.protocol import (Accelerometer, GameState, Gyro, Hear, Polar, See, Sense, TimePerceptor, VisibleLine,
                             VisibleObject, format_sense)
 from agent.world.field import FIELD_LINES, LANDMARKS
 from kinematics import JOINT_NAMES

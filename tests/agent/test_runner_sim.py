@@ -8,8 +8,6 @@ import sys
 import threading
 import time
 
-import pytest
-
 from agent import Agent, AgentConfig
 from agent.errors import ServerUnreachable
 from agent.formation import beam_spot

@@ -13,8 +13,7 @@ from hypothesis import strategies as st
 
 from agent.protocol import Hear, parse_sense
 from agent.world.frames import Pose2D, TeamFrame, circular_mean_rad, wrap_angle_rad
-from agent.world.orientation import OrientationFilter, tilt_from_up, tilt_matrix
-from agent.world.orientation import Tilt
+from agent.world.orientation import OrientationFilter, Tilt, tilt_from_up, tilt_matrix
 from agent.world_model import WorldModel
 from kinematics.fk import torso_rotation
 from tests.agent import synthetic_world as synth
