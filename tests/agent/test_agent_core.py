@@ -113,3 +113,17 @@ def test_agent_imports_no_mujoco():
     result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
     assert result.returncode == 0, result.stderr
     assert result.stdout.strip() == "False"
+
+
+def test_play_mode_change_restarts_the_slots_at_label_1():
+    agent = Agent(AgentConfig("Mine", 1))
+    said = []
+    modes = ["BeforeKickOff"] * 10 + ["KickOff_Left"] * 40
+    for i, mode in enumerate(modes):
+        # Server time 7.00 + odd offset, so the old clock's slots and the new one's do not line up.
+        actions = parse_actions(agent.step(synth.sense_bytes(7.02 + 0.02 * i, play_mode=mode,
+                                                             unum=1 if i == 0 else None,
+                                                             side="left" if i == 0 else None)))
+        said += [i for a in actions if isinstance(a, Say)]
+    assert 10 in said  # the cycle the mode changed opens slot 1
+    assert 10 + 33 in said and all(i == 10 or i == 43 or i < 10 for i in said)
