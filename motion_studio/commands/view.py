@@ -26,9 +26,9 @@ def view(
     if log is not None:
         from sim.replay import replay_log
 
-        replay_log(log, html_out=html)
-        return
-    url_or_path = preview_pose(robot_type, joint or [], pose, html)
+        url_or_path = replay_log(log, html_out=html, block=False)
+    else:
+        url_or_path = preview_pose(robot_type, joint or [], pose, html)
     if html is not None:
         typer.echo(f"wrote {url_or_path}")
         return
