@@ -109,3 +109,13 @@ def test_cli_exits_non_zero_with_a_clear_message():
     bad = subprocess.run([sys.executable, "-m", "agent", "--unum", "12", "--attempts", "1"],
                          capture_output=True, text=True, timeout=60)
     assert bad.returncode == 2 and "unum" in bad.stderr
+
+
+def test_motion_studio_agent_subcommand_exits_2_without_a_server():
+    from typer.testing import CliRunner
+
+    from motion_studio.cli import _register_commands, app
+
+    _register_commands()
+    result = CliRunner().invoke(app, ["agent", "--port", str(_closed_port()), "--attempts", "1", "--team", "Mine"])
+    assert result.exit_code == 2
