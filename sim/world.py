@@ -51,6 +51,9 @@ _BALL_BIT = 1 << 29
 _GHOST_BIT = 1 << 28
 _ROBOT_BITS = (1 << MAX_ROBOTS) - 1
 _ALL_BITS = _ROBOT_BITS | _WORLD_BIT | _BALL_BIT | _GHOST_BIT
+# Contact sensor settings (MuJoCo mjtConDataField bits found | force | pos; reduction "netforce").
+_CONTACT_FOUND_FORCE_POS = 1 | 2 | 16
+_CONTACT_NETFORCE = 3
 
 
 @dataclass
@@ -96,6 +99,7 @@ class World:
         self.motors = MotorBank(self.params)
         self.time_s = 0.0
         self.mujoco_wall_s = 0.0
+        self._poses_stale = False
         """Wall time spent inside mujoco.mj_step [s] (for benchmarks)."""
         self._ball_touchers: list[tuple[str, int]] = []
         self._touching_pairs: list[tuple[tuple[str, int], tuple[str, int]]] = []
@@ -155,6 +159,12 @@ class World:
             if joint.name != "root":
                 joint.solref_limit = list(p.joint_limit_solref)
                 joint.solimp_limit = list(p.joint_limit_solimp)
+        for sensor in spec.sensors:
+            if sensor.kind == "force":
+                # MuJoCo sums the foot's contacts in C: net force and force-weighted centroid (world frame).
+                child.add_sensor(name=f"frp_{sensor.name}", type=mujoco.mjtSensor.mjSENS_CONTACT,
+                                 objtype=mujoco.mjtObj.mjOBJ_GEOM, objname=sensor.body,
+                                 intprm=[_CONTACT_FOUND_FORCE_POS, _CONTACT_NETFORCE, 1])
         frame = self.spec.worldbody.add_frame(name=f"{robot.prefix}frame")
         self.spec.attach(child, prefix=robot.prefix, frame=frame)
         self.by_key[key] = robot
@@ -175,12 +185,14 @@ class World:
         self._recompile()
 
     def _recompile(self) -> None:
+        """Recompile the edited spec keeping the state; poses are refreshed."""
         for key, row in getattr(self, "row", {}).items():   # keep the accelerometer history of every robot
             if key in self.by_key:
                 self.by_key[key].velocity_sample = self.velocity_samples[row].copy()
                 self.by_key[key].acc_m_s2 = self.accelerations[row].copy()
         self.model, self.data = self.spec.recompile(self.model, self.data)
         self._reindex()
+        mujoco.mj_kinematics(self.model, self.data)
 
     def _reindex(self) -> None:
         """Recompute every cached model address (after each recompile)."""
@@ -199,6 +211,7 @@ class World:
         self.geom_sensor = np.full(m.ngeom, -1, dtype=np.intp)
         sensor_geoms: list[int] = []
         sensor_bodies: list[int] = []
+        sensor_addresses: list[int] = []
         self.order: list[int] = list(self.by_key)
         for index, robot in enumerate(self.by_key.values()):
             prefix = robot.prefix
@@ -219,6 +232,7 @@ class World:
                     robot.sensor_slots[sensor.name] = slot
                     sensor_geoms.append(m.geom(prefix + sensor.body).id)
                     sensor_bodies.append(m.body(prefix + sensor.body).id)
+                    sensor_addresses.append(m.sensor_adr[m.sensor(f"{prefix}frp_{sensor.name}").id])
                     self.geom_sensor[sensor_geoms[-1]] = slot
             joints = [m.joint(prefix + j.perceptor).id for j in robot.spec.joints]
             self.motors.set_addresses(robot.key, m.jnt_qposadr[joints], m.jnt_dofadr[joints])
@@ -238,11 +252,13 @@ class World:
         self.wire_offsets = offsets
         self.sensor_geom = np.array(sensor_geoms, dtype=np.intp)
         self.sensor_body = np.array(sensor_bodies, dtype=np.intp)
+        self._sensor_data = np.array(sensor_addresses, dtype=np.intp)[:, None] + np.arange(7)
         self.frp_active = np.zeros(len(sensor_geoms), dtype=bool)
         self.frp_point = np.zeros((len(sensor_geoms), 3))
         self.frp_force = np.zeros((len(sensor_geoms), 3))
         self.root_qadr = np.array([r.root_qadr for r in self.by_key.values()], dtype=np.intp)
         self.root_dof = np.array([r.root_dof for r in self.by_key.values()], dtype=np.intp)
+        self._torso_bodies = np.array([r.torso_body for r in self.by_key.values()], dtype=np.intp)
         self._root_pos = self.root_qadr[:, None] + np.arange(3)
         self._root_quat = self.root_qadr[:, None] + np.arange(3, 7)
         self._root_lin = self.root_dof[:, None] + np.arange(3)
@@ -311,9 +327,8 @@ class World:
         """Sample the accelerometers (before beams and physics; see the module docstring)."""
         if not self.by_key:
             return
-        q, v = self.data.qpos, self.data.qvel
-        velocity = v[self._root_lin]
-        rotation = _quat_to_matrix_batch(q[self._root_quat])
+        velocity = self.data.qvel[self._root_lin]
+        rotation = self.data.xmat[self._torso_bodies].reshape(-1, 3, 3)   # poses are current (see step)
         world_acc = (velocity - self.velocity_samples) / self.params.cycle_s
         world_acc[:, 2] += self.params.gravity_m_s2
         self.accelerations = np.einsum("rji,rj->ri", rotation, world_acc)
@@ -338,11 +353,16 @@ class World:
                 _restore_state(d, saved)
             self._ball_rebound(ball_velocity)
         self.time_s += self.params.cycle_s
-        self._contacts()
+        self._contacts()        # from the step's contacts, with the poses they were found at
+        mujoco.mj_kinematics(m, d)
+        self._poses_stale = False
 
     def end_cycle(self) -> None:
-        """Bring body poses up to date with the state (after the referee's moves), for the perceptors."""
-        mujoco.mj_kinematics(self.model, self.data)
+        """Bring body poses up to date after the referee's moves, for the perceptors (robot placements
+        refresh them at once; only `set_ball` leaves them stale)."""
+        if self._poses_stale:
+            mujoco.mj_kinematics(self.model, self.data)
+            self._poses_stale = False
 
     def _ball_rebound(self, velocity_before: np.ndarray) -> None:
         """ODE-style bounce of the ball (see `sim.physics_params`): restitution above the bounce speed."""
@@ -350,8 +370,7 @@ class World:
         if d.ncon == 0:
             return
         geoms = d.contact.geom
-        hits = np.nonzero((geoms[:, 0] == self.ball_geom) | (geoms[:, 1] == self.ball_geom))[0]
-        for i in hits:
+        for i in np.nonzero((geoms == self.ball_geom).any(axis=1))[0].tolist():
             g1, g2 = int(geoms[i, 0]), int(geoms[i, 1])
             normal = d.contact.frame[i, :3]
             sign = 1.0 if g2 == self.ball_geom else -1.0   # the normal points from geom1 to geom2
@@ -377,62 +396,49 @@ class World:
 
     def _contacts(self) -> None:
         """Foot force sensors, ball touchers and robot pairs in contact, from the last step's contacts."""
-        m, d = self.model, self.data
+        d = self.data
         self._ball_touchers = []
         self._touching_pairs = []
         self.frp_active = np.zeros(self.sensor_geom.size, dtype=bool)
-        n = d.ncon
-        if n == 0:
+        if d.ncon == 0 or not self.by_key:
             return
+        self._foot_sensors()
         geoms = d.contact.geom
-        g1, g2 = geoms[:, 0], geoms[:, 1]
-        r1, r2 = self.geom_robot[g1], self.geom_robot[g2]
-        involved = (r1 >= 0) | (r2 >= 0)
-        if not involved.any():
-            return
+        owner = self.geom_robot[geoms]                      # (n, 2): robot index or -1
         robots = list(self.by_key.values())
-        ball = self.ball_geom
-        for i in np.nonzero(involved & ((g1 == ball) | (g2 == ball)))[0]:
-            robot = robots[r1[i] if r1[i] >= 0 else r2[i]]
-            if robot.side is not None:
-                self._ball_touchers.append((robot.side, robot.unum))
-        pairs = involved & (r1 >= 0) & (r2 >= 0) & (r1 != r2)
-        if pairs.any():
+        ball_rows = (geoms == self.ball_geom).any(axis=1) & (owner.max(axis=1) >= 0)
+        if ball_rows.any():
+            found = {(robots[r].side, robots[r].unum) for r in owner[ball_rows].max(axis=1).tolist()
+                     if robots[r].side is not None}
+            self._ball_touchers = sorted(found)  # type: ignore[arg-type]
+        pair_rows = (owner.min(axis=1) >= 0) & (owner[:, 0] != owner[:, 1])
+        if pair_rows.any():
             found = set()
-            for a, b in np.unique(np.sort(np.stack([r1[pairs], r2[pairs]], axis=1), axis=1), axis=0):
+            for a, b in owner[pair_rows].tolist():
                 ra, rb = robots[a], robots[b]
                 if ra.side is not None and rb.side is not None:
                     found.add(tuple(sorted(((ra.side, ra.unum), (rb.side, rb.unum)))))
             self._touching_pairs = sorted(found)  # type: ignore[arg-type]
-        self._ball_touchers = sorted(set(self._ball_touchers))
-        # Foot sensors (REFERENCE §3.4): |f|-weighted mean contact point and summed force, foot frame.
-        s1, s2 = self.geom_sensor[g1], self.geom_sensor[g2]
-        on = (s1 >= 0) | (s2 >= 0)
-        if not on.any():
+
+    def _foot_sensors(self) -> None:
+        """FRP (REFERENCE §3.4): force-weighted contact centroid and summed force of each foot, foot frame.
+
+        MuJoCo's contact sensor (reduction "netforce") gives both in the world frame, for the pre-step poses
+        the contacts were found at, which are still in xpos/xmat until the kinematics of the new state run.
+        """
+        if self.sensor_body.size == 0:
             return
-        index = np.nonzero(on)[0]
-        forces = _contact_forces_world(m, d, index)              # on geom2, world frame
-        sign = np.where(s2[index] >= 0, 1.0, -1.0)[:, None]       # force on the sensor's geom
-        slots = np.where(s2[index] >= 0, s2[index], s1[index])
-        force = forces * sign
-        pos = d.contact.pos[index]
-        weight = np.sqrt((force * force).sum(axis=1))
-        rows = np.empty((index.size, 10))
-        rows[:, 0:3] = force
-        rows[:, 3:6] = pos * weight[:, None]
-        rows[:, 6] = weight
-        rows[:, 7:10] = pos
-        sums = np.zeros((self.sensor_geom.size, 10))
-        np.add.at(sums, slots, rows)
-        counts = np.bincount(slots, minlength=self.sensor_geom.size)
-        # A contact inside the detection margin but carrying no force is no touch for the sensor.
-        active = sums[:, 6] > 1e-9
-        wsum = np.where(active, sums[:, 6], 1.0)[:, None]
-        centre = np.where(active[:, None], sums[:, 3:6] / wsum, sums[:, 7:10] / np.maximum(counts, 1)[:, None])
+        d = self.data
+        values = d.sensordata[self._sensor_data]              # (S, 7): found, force (on the ground), centroid
+        force = -values[:, 1:4]                                 # the ground's force on the foot
+        active = (values[:, 0] > 0) & ((force * force).sum(axis=1) > 1e-18)
+        if not active.any():
+            self.frp_active = active
+            return
         bodies = self.sensor_body
         rotation = d.xmat[bodies].reshape(-1, 3, 3)
-        self.frp_point = np.einsum("sji,sj->si", rotation, centre - d.xpos[bodies])
-        self.frp_force = np.einsum("sji,sj->si", rotation, sums[:, 0:3])
+        self.frp_point = np.einsum("sji,sj->si", rotation, values[:, 4:7] - d.xpos[bodies])
+        self.frp_force = np.einsum("sji,sj->si", rotation, force)
         self.frp_active = active
 
     # ---- sensor readings ------------------------------------------------------------------------------
@@ -485,6 +491,7 @@ class World:
         self.data.qpos[a + 3:a + 7] = (1.0, 0.0, 0.0, 0.0)
         self.data.qvel[v:v + 3] = velocity_m_s
         self.data.qvel[v + 3:v + 6] = 0.0
+        self._poses_stale = True
 
     def robots(self) -> list[RobotState]:
         """Robots with a team, for the referee (connection order)."""
@@ -493,7 +500,7 @@ class World:
             return []
         robots = list(self.by_key.values())
         q, v = self.data.qpos, self.data.qvel
-        rotation = _quat_to_matrix_batch(q[self._root_quat[rows]])
+        rotation = self.data.xmat[self._torso_bodies[rows]].reshape(-1, 3, 3)
         position = q[self._root_pos[rows]].tolist()
         velocity = v[self._root_lin[rows]].tolist()
         up_z = rotation[:, 2, 2].tolist()
@@ -527,48 +534,6 @@ def _quat_to_matrix(quat: np.ndarray) -> np.ndarray:
     out = np.zeros(9)
     mujoco.mju_quat2Mat(out, np.asarray(quat, dtype=float))
     return out.reshape(3, 3)
-
-
-def _quat_to_matrix_batch(quat: np.ndarray) -> np.ndarray:
-    """(n, 4) unit quaternions (w, x, y, z) -> (n, 3, 3) rotation matrices."""
-    w, x, y, z = quat[:, 0], quat[:, 1], quat[:, 2], quat[:, 3]
-    out = np.empty((quat.shape[0], 3, 3))
-    out[:, 0, 0] = 1 - 2 * (y * y + z * z)
-    out[:, 0, 1] = 2 * (x * y - w * z)
-    out[:, 0, 2] = 2 * (x * z + w * y)
-    out[:, 1, 0] = 2 * (x * y + w * z)
-    out[:, 1, 1] = 1 - 2 * (x * x + z * z)
-    out[:, 1, 2] = 2 * (y * z - w * x)
-    out[:, 2, 0] = 2 * (x * z - w * y)
-    out[:, 2, 1] = 2 * (y * z + w * x)
-    out[:, 2, 2] = 1 - 2 * (x * x + y * y)
-    return out
-
-
-def _contact_forces_world(m: mujoco.MjModel, d: mujoco.MjData, index: np.ndarray) -> np.ndarray:
-    """Force of the contacts ``index`` on their geom2 in the world frame, (k, 3), from the solver rows.
-
-    Vectorised for condim 3 (pyramidal: 4 edge rows, normal = their sum, tangent i = mu_i (f_2i - f_2i+1);
-    elliptic: the rows are the normal and tangential components); other cases use mj_contactForce.
-    """
-    contact = d.contact
-    adr, dim = contact.efc_address[index], contact.dim[index]
-    local = np.zeros((index.size, 3))
-    three = (adr >= 0) & (dim == 3)
-    if m.opt.cone == mujoco.mjtCone.mjCONE_PYRAMIDAL:
-        rows = d.efc_force[adr[three, None] + np.arange(4)]
-        mu = contact.friction[index[three], :2]
-        local[three, 0] = rows.sum(axis=1)
-        local[three, 1] = mu[:, 0] * (rows[:, 0] - rows[:, 1])
-        local[three, 2] = mu[:, 1] * (rows[:, 2] - rows[:, 3])
-    else:
-        local[three] = d.efc_force[adr[three, None] + np.arange(3)]
-    buffer = np.zeros(6)
-    for i in np.nonzero((adr >= 0) & (dim != 3))[0]:
-        mujoco.mj_contactForce(m, d, int(index[i]), buffer)
-        local[i] = buffer[:3]
-    frame = contact.frame[index].reshape(-1, 3, 3)     # rows: normal, tangent1, tangent2
-    return np.einsum("ni,nij->nj", local, frame)
 
 
 def _save_state(d: mujoco.MjData) -> tuple[np.ndarray, ...]:
