@@ -1,43 +1,54 @@
 """Physics settings that make MuJoCo behave like SimSpark's ODE world (REFERENCE §2.4), with the measurements.
 
-Why these choices (numbers measured on this machine with `benchmarks/bench_sim.py` and the probes in
-tests/sim/test_world_physics.py; MuJoCo 4.0.0):
+Numbers measured on the 2-core development machine (shared, so wall times vary by 2x) with MuJoCo 4.0.0;
+probes: tests/sim/test_world_physics.py, tests/sim/test_world_calibration.py (replays of real 0.7.3
+sessions), benchmarks/bench_sim.py.
 
 * **One 20 ms step per cycle, integrator ``discrete``.** SimSpark does one ODE ``dWorldStep`` of 0.02 s per
-  cycle. MuJoCo's ``discrete`` integrator solves constraints and the implicit damping update in one
-  velocity-level step (like ODE), and a robot with every joint held stands still at any timestep:
-  torso z constant to 0.1 mm over 10 s at h = 20, 10 and 5 ms. ``implicitfast`` (the usual choice) makes
-  the same robot rock and hop at every timestep tried (h = 2, 5, 10 ms: feet airborne in 10-25 % of steps,
-  tilt up to 7°), because the contact impedance is computed from the light foot's inertia while the feet
-  are in fact welded to the whole robot by the stiff motors; at h = 20 ms it falls over. Cost: 1 robot
-  0.05 ms per cycle, 22 robots 0.66 ms per cycle (raw MuJoCo, wave-commanded joints).
+  cycle. MuJoCo's ``discrete`` integrator solves the constraints and the implicit damping update in one
+  velocity-level step, like ODE, and a robot holding every joint stands still at any step (torso height
+  constant to 0.1 mm over 10 s at h = 20, 10 and 5 ms). ``implicitfast``, the usual choice, makes the same
+  robot rock and hop (feet airborne in 10-25 % of the steps at h = 2, 5, 10 ms; it falls at h = 20 ms):
+  the contact impedance comes from the light foot's inertia while the stiff motors weld the foot to the
+  whole robot. Sub-stepping buys nothing measurable for standing, and one step keeps ODE's timing (a
+  joint at 1 rad/s moves exactly 1.146° per cycle, as the real server's HJ shows). Raw ``mj_step`` per
+  cycle: 1 robot 0.03 ms, 22 robots 0.6 ms (CPU time, robots standing).
 * **Joint motors = implicit joint damping + a constant force.** ODE's hinge motor is a velocity constraint
-  with a force bound (10 N·m). Here the servo force kv·(u - q̇) is split into joint damping kv (integrated
-  implicitly by ``discrete``, inside the tree factorisation, so it costs nothing) and an applied force
-  kv·u. With kv = 1e4 N·m·s/rad a commanded 1.0 rad/s gives 57.30 °/s and the steady error under the full
-  10 N·m load is 1e-3 rad/s (0.06 °/s). MuJoCo's ``velocity`` actuator does the same 3x slower (its gain
-  is an off-diagonal metric term) and its ``forcerange`` clamp is decided on the explicit force kv·(u - q̇),
-  which saturates every light joint at once and overshoots by ~100 rad/s in one step. So the 10 N·m bound
-  is enforced by an active set (see `sim.effectors.MotorBank`): a joint whose servo force would exceed the
-  bound gets damping 0 and a constant ±10 N·m instead, and the step is redone when the guess was wrong.
-* **Contacts.** μ = ∞ in SimSpark (slip only through soft ERP/CFM); here Coulomb friction μ = 2 with
-  pyramidal cones (cheaper than elliptic at the same stand quality), condim 3, default solref/solimp
-  (the ``refsafe`` rule of ``discrete`` stiffens rows that the step cannot resolve). A standing robot's feet
-  do not slide (< 0.01 mm in 10 s).
-* **Ball.** Free-joint damping gives exactly SimSpark's linear drag 0.01 N·s/m and angular drag 5e-5. ODE's
-  bounce (restitution 0.8 above 0.8 m/s) has no stable MuJoCo equivalent at a 20 ms step (a restitutive
-  spring must be softer than the step, so the ball would sink centimetres into the ground), so
-  `sim.world.World` adds the rebound after the step: for each ball contact approaching faster than 0.8 m/s
-  the ball gets +0.8·|v_n| along the normal.
-* **Drag on robots.** SimSpark applies F = -0.01 v and τ = -0.01 ω to every body. The robot's whole-body
-  part is applied as free-joint damping of the torso (N_bodies × 0.01 on the linear dofs, N_bodies × 0.01
-  on the angular dofs), which is exact for a rigid translation and ignores the drag of limbs swinging
-  relative to the torso (at most 0.06 N·m at full joint speed, against 10 N·m motors).
+  with a force bound (10 N·m). Here the servo force g·(u - q̇) is split into joint damping g (integrated
+  implicitly inside the tree factorisation, so it costs nothing) and an applied force g·u; g = kv = 1e5
+  N·m·s/rad normally, so a commanded 1.0 rad/s gives 57.30 °/s, -100 is clamped to 6.1395 rad/s, and a
+  joint under the full 10 N·m load creeps 1e-4 rad/s. The real server's crouch trace is reproduced to
+  0.01° on every joint. MuJoCo's ``velocity`` actuator does the same 3x slower (its gain is a metric term
+  outside the tree) and its ``forcerange`` clamp is decided on the explicit force kv·(u - q̇), which
+  saturates every light joint at once and overshoots by ~100 rad/s in one step. The 10 N·m bound is kept
+  by `sim.effectors.MotorBank`: lowered gains where the bound would be exceeded, a constant ±10 N·m where
+  a load overpowers the motor, and a re-solve of the step when the guess was wrong (off the stops no
+  motor exceeds 10.5 N·m, even under random ±6 rad/s commands).
+* **Contacts.** μ = ∞ in SimSpark (slip only through soft ERP/CFM); here Coulomb μ = 2, condim 3,
+  elliptic cones: pyramidal cones make ``mj_step`` 2x cheaper but split a standing robot's weight
+  unevenly between the feet once μ >= 0.8 (18.4 / 26.8 N at μ = 2, depending on the heading against the
+  world axes), elliptic gives 22.60 / 22.60 N like the real server. solimp (0.2, 0.3, 0.001): the
+  discrete step makes MuJoCo's default contact almost rigid (0.02 mm sinking), and a foot whose load
+  drops then leaves the ground for a whole 20 ms step and bounces (the real crouch keeps contact: ODE's
+  1 mm surface layer); with this softer impedance a loaded foot sinks about 0.5 mm and the replayed real
+  crouch keeps its feet down (foot force RMS error 5 N instead of 8, fall force RMS 10 N instead of 42).
+  Standing: FRP f_z = 22.60 N per foot (REFERENCE: 22.6), c = (±0.003, -0.009, -0.010) m (real:
+  (0.00, -0.01, -0.01)); the feet creep 0.4 mm in 10 s (0.01 mm with the default impedance).
+* **Ball.** Its own stiff contact parameters win every ball contact (solmix), so it neither sinks into the
+  ground nor rolls out early. Free-joint damping gives exactly SimSpark's linear drag 0.01 N·s/m and
+  angular drag 5e-5. ODE's bounce (restitution 0.8 above 0.8 m/s) has no stable MuJoCo equivalent at a
+  20 ms step (a restitutive spring must be softer than the step, so the ball would sink centimetres), so
+  `sim.world.World` adds the rebound after the step: a ball contact approaching faster than 0.8 m/s sends
+  the ball off at 0.8 x the approach speed (a 1 m drop rebounds to 0.46 m: 0.64 m less the drag losses).
+* **Drag on robots.** SimSpark applies F = -0.01 v and τ = -0.01 ω to every body. Here the whole-body part
+  is free-joint damping of the torso (N_bodies x 0.01 on the linear and angular dofs), exact for a rigid
+  translation; the drag of limbs swinging relative to the torso is left out (at most 0.06 N·m at full
+  joint speed, against 10 N·m motors).
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, replace
 
 
 @dataclass(frozen=True)
@@ -52,8 +63,6 @@ class PhysicsParams:
     """Gravity magnitude [m/s²] (REFERENCE §2.4)."""
     motor_kv: float = 1.0e5
     """Servo gain of the joint motors [N·m·s/rad]: steady velocity error = load / kv."""
-    motor_max_torque_nm: float = 10.0
-    """Motor force bound (FMax, REFERENCE §2.2) [N·m]; the per-joint value in the spec wins."""
     motor_active_set_passes: int = 3
     """At most this many physics solves per step to settle which motors are saturated."""
     motor_torque_tolerance: float = 0.05
@@ -92,8 +101,6 @@ class PhysicsParams:
     """solimp of the joint stops."""
     solver_iterations: int = 50
     """Main solver iterations (Newton)."""
-    extra_flags: dict[str, bool] = field(default_factory=dict)
-    """Reserved for experiments (benchmarks toggle MuJoCo flags by name)."""
 
     @property
     def timestep_s(self) -> float:

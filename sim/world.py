@@ -77,6 +77,8 @@ class Robot:
     head_body: int = 0
     part_bodies: np.ndarray = field(default_factory=lambda: np.zeros(5, dtype=np.intp))
     foot_bodies: dict[str, int] = field(default_factory=dict)
+    body_names: tuple[str, ...] = ()
+    body_ids: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.intp))
     sensor_slots: dict[str, int] = field(default_factory=dict)
     geoms: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.intp))
     velocity_sample: np.ndarray = field(default_factory=lambda: np.zeros(3))
@@ -100,6 +102,7 @@ class World:
         self.time_s = 0.0
         self.mujoco_wall_s = 0.0
         self._poses_stale = False
+        self._templates: dict[int, mujoco.MjSpec] = {}
         """Wall time spent inside mujoco.mj_step [s] (for benchmarks)."""
         self._ball_touchers: list[tuple[str, int]] = []
         self._touching_pairs: list[tuple[tuple[str, int], tuple[str, int]]] = []
@@ -147,24 +150,7 @@ class World:
             raise ValueError(f"the world holds at most {MAX_ROBOTS} robots")
         spec = robot_spec(robot_type)
         robot = Robot(key=key, robot_type=robot_type, spec=spec, prefix=f"r{key}_", slot=free[0])
-        child = build_robot_mjspec(robot_type)
-        for exclude in list(child.excludes):  # own parts are filtered by the collision bits instead
-            child.delete(exclude)
-        p = self.params
-        for geom in child.geoms:
-            geom.condim = p.contact_condim
-            geom.solref, geom.solimp = list(p.contact_solref), list(p.contact_solimp)
-            geom.friction = [p.friction, 0.005, 0.0001]
-        for joint in child.joints:
-            if joint.name != "root":
-                joint.solref_limit = list(p.joint_limit_solref)
-                joint.solimp_limit = list(p.joint_limit_solimp)
-        for sensor in spec.sensors:
-            if sensor.kind == "force":
-                # MuJoCo sums the foot's contacts in C: net force and force-weighted centroid (world frame).
-                child.add_sensor(name=f"frp_{sensor.name}", type=mujoco.mjtSensor.mjSENS_CONTACT,
-                                 objtype=mujoco.mjtObj.mjOBJ_GEOM, objname=sensor.body,
-                                 intprm=[_CONTACT_FOUND_FORCE_POS, _CONTACT_NETFORCE, 1])
+        child = self._robot_template(robot_type).copy()
         frame = self.spec.worldbody.add_frame(name=f"{robot.prefix}frame")
         self.spec.attach(child, prefix=robot.prefix, frame=frame)
         self.by_key[key] = robot
@@ -173,6 +159,32 @@ class World:
         self._place_root(robot, position_m, yaw_rad=0.0)
         mujoco.mj_kinematics(self.model, self.data)
         return robot
+
+    def _robot_template(self, robot_type: int) -> mujoco.MjSpec:
+        """The MjSpec of one robot type set up for this world (built once per type; attach a copy)."""
+        template = self._templates.get(robot_type)
+        if template is not None:
+            return template
+        spec, p = robot_spec(robot_type), self.params
+        template = build_robot_mjspec(robot_type)
+        for exclude in list(template.excludes):  # own parts are filtered by the collision bits instead
+            template.delete(exclude)
+        for geom in template.geoms:
+            geom.condim = p.contact_condim
+            geom.solref, geom.solimp = list(p.contact_solref), list(p.contact_solimp)
+            geom.friction = [p.friction, 0.005, 0.0001]
+        for joint in template.joints:
+            if joint.name != "root":
+                joint.solref_limit = list(p.joint_limit_solref)
+                joint.solimp_limit = list(p.joint_limit_solimp)
+        for sensor in spec.sensors:
+            if sensor.kind == "force":
+                # MuJoCo sums the foot's contacts in C: net force and force-weighted centroid (world frame).
+                template.add_sensor(name=f"frp_{sensor.name}", type=mujoco.mjtSensor.mjSENS_CONTACT,
+                                    objtype=mujoco.mjtObj.mjOBJ_GEOM, objname=sensor.body,
+                                    intprm=[_CONTACT_FOUND_FORCE_POS, _CONTACT_NETFORCE, 1])
+        self._templates[robot_type] = template
+        return template
 
     def remove_robot(self, key: int) -> None:
         """Take a robot out of the world (agent disconnected)."""
@@ -221,7 +233,9 @@ class World:
             robot.torso_body = m.body(f"{prefix}torso").id
             robot.head_body = m.body(f"{prefix}head").id
             robot.part_bodies = np.array([m.body(prefix + part).id for part in VISIBLE_PARTS], dtype=np.intp)
-            bodies = {m.body(prefix + b.name).id for b in robot.spec.bodies}
+            robot.body_names = tuple(b.name for b in robot.spec.bodies)
+            robot.body_ids = np.array([m.body(prefix + name).id for name in robot.body_names], dtype=np.intp)
+            bodies = set(robot.body_ids.tolist())
             robot.geoms = np.array([g for g in range(m.ngeom) if m.geom_bodyid[g] in bodies], dtype=np.intp)
             self.geom_robot[robot.geoms] = index
             robot.foot_bodies = {s.name: m.body(prefix + s.body).id for s in robot.spec.sensors if s.kind == "force"}
@@ -508,6 +522,22 @@ class World:
         return [RobotState(robots[r].side, robots[r].unum, robots[r].robot_type,  # type: ignore[arg-type]
                            tuple(position[i]), tuple(velocity[i]), up_z[i], heading[i])  # type: ignore[arg-type]
                 for i, r in enumerate(rows)]
+
+    def ball_pose(self) -> tuple[tuple[float, float, float], tuple[float, ...]]:
+        """Ball centre [m] and row-major 3x3 rotation (for monitors: `sim.monitor.SceneSource`)."""
+        body = self.ball_body
+        return tuple(self.data.xpos[body].tolist()), tuple(self.data.xmat[body].tolist())  # type: ignore[return-value]
+
+    def robot_body_poses(self) -> list[tuple[str | None, int, int, dict[str, tuple[tuple[float, ...], tuple[float, ...]]]]]:
+        """Per robot in connection order: (side or None, unum or 0, robot type, {SimSpark body name: (centre [m],
+        row-major 3x3 rotation)}); body frames are SimSpark's, so these are the transforms the server sends."""
+        out = []
+        xpos, xmat = self.data.xpos, self.data.xmat
+        for robot in self.by_key.values():
+            positions, rotations = xpos[robot.body_ids].tolist(), xmat[robot.body_ids].tolist()
+            bodies = {name: (tuple(p), tuple(r)) for name, p, r in zip(robot.body_names, positions, rotations)}
+            out.append((robot.side, robot.unum or 0, robot.robot_type, bodies))
+        return out
 
     def robots_with_team(self) -> list[Robot]:
         return [r for r in self.by_key.values() if r.side is not None]
