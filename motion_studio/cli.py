@@ -17,6 +17,7 @@ COMMAND_MODULES = (
     "motion_studio.commands.view",
     "motion_studio.commands.demo",
     "motion_studio.commands.bench_kinematics",
+    "motion_studio.commands.match",
     "motion_studio.commands.bench_sim",
     "motion_studio.commands.agent",
     "motion_studio.commands.serve",

@@ -1,0 +1,38 @@
+"""``motion-studio match``: full matches headless on our simulator, one or a checkpointed batch."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import Annotated, Optional
+
+import typer
+
+from motion_studio.cli import app
+
+
+@app.command()
+def match(
+    players: Annotated[int, typer.Option(help="players per team (1-11)")] = 3,
+    duration: Annotated[float, typer.Option(help="game time to play, s (600 = two halves)")] = 600.0,
+    matches: Annotated[int, typer.Option(help="number of matches (seeds seed..seed+N-1)")] = 1,
+    workers: Annotated[int, typer.Option(help="parallel processes for a batch")] = 1,
+    seed: Annotated[int, typer.Option(help="first seed")] = 0,
+    out: Annotated[Path, typer.Option(help="output folder: results.jsonl (checkpoint), logs, plot")] = Path("out/match"),
+    log: Annotated[bool, typer.Option(help="write a SimSpark monitor log per match")] = True,
+    team_left: Annotated[str, typer.Option()] = "Left",
+    team_right: Annotated[str, typer.Option()] = "Right",
+    resume: Annotated[bool, typer.Option(help="keep finished matches of an earlier run of the same folder")] = True,
+    summary_json: Annotated[Optional[bool], typer.Option("--json", help="print the results as JSON")] = False,
+) -> None:
+    """Play matches with our agents and motions; results go to OUT/results.jsonl as each match ends."""
+    from motion_studio.match_report import run_and_report
+
+    lines, results = run_and_report(players=players, duration_s=duration, matches=matches, workers=workers,
+                                    seed=seed, out=out, log=log, team_left=team_left, team_right=team_right,
+                                    resume=resume)
+    if summary_json:
+        typer.echo(json.dumps(results))
+        return
+    for line in lines:
+        typer.echo(line)
