@@ -9,9 +9,10 @@ A cycle, as the engine drives it (the order reproduces rcssserver3d's, REFERENCE
    ACC lags the contact forces by one cycle: measured, FRP spike in message 7, ACC spike in message 8);
 2. the engine applies beams (the beam effector acts after that sample: measured, a beam shows in ACC one
    cycle later than an init move);
-3. `step` runs the physics (motor active set, ball rebound, contact bookkeeping);
-4. the referee may move robots and the ball;
-5. `end_cycle` updates body poses and the gyro/joint/foot readings for the perceptors.
+3. `step` runs the physics (motor active set, ball rebound), reads the foot sensors and contacts, and
+   brings the body poses up to date;
+4. the referee may move robots (poses refreshed at once) and the ball;
+5. `end_cycle` refreshes the poses if only the ball was moved; the perceptors read the world after it.
 
 Robots are added and removed at run time by editing the MjSpec and recompiling with the state kept
 (`MjSpec.recompile`), since agents connect one by one. Until a robot has a team (successful init) it
@@ -20,7 +21,6 @@ collides only with the field, goals, walls and ball, so robots created at the sa
 
 from __future__ import annotations
 
-import logging
 import math
 import time
 from dataclasses import dataclass, field
@@ -35,7 +35,6 @@ from sim.field import BALL_MASS_KG, BALL_RADIUS_M, add_static_geometry
 from sim.physics_params import PhysicsParams, default_physics_params
 from sim.world_api import RobotState
 
-logger = logging.getLogger(__name__)
 
 #: Where SimSpark builds a new robot (torso centre, REFERENCE §2.1); facing +y (measured: first vision).
 SPAWN_POSITION_M = (0.0, -1.0, 1.5)
