@@ -63,8 +63,8 @@ def write_preview(path: Path, angles_rad: dict[str, float]) -> Path:
     return path
 
 
-def run_demo(out_dir: Path) -> list[str]:
-    """Model summary, exported models and a preview; returns the report lines (the CLI prints them)."""
+def run_demo(out_dir: Path, match_duration_s: float = 600.0, players_per_team: int = 3) -> list[str]:
+    """Model summary, exported models, a preview, then a headless match with a replay; returns report lines."""
     out_dir.mkdir(parents=True, exist_ok=True)
     report = model_summary()
     for robot_type in ROBOT_TYPES:
@@ -77,4 +77,19 @@ def run_demo(out_dir: Path) -> list[str]:
     report.append(f"camera height in the crouch: {NaoKinematics(0).camera_height_m(angles):.4f} m")
     preview = write_preview(out_dir / "preview.html", angles)
     report.append(f"wrote {out_dir}/nao_type*.xml, *.urdf and {preview}")
+    if match_duration_s > 0:
+        report.extend(play_match(out_dir, match_duration_s, players_per_team))
     return report
+
+
+def play_match(out_dir: Path, duration_s: float, players_per_team: int) -> list[str]:
+    """A headless match of our agents on our simulator, its monitor log and a meshcat replay file."""
+    from motion_studio.match_report import run_and_report
+    from sim.replay import replay_log
+
+    match_dir = out_dir / "match"
+    lines, results = run_and_report(players=players_per_team, duration_s=duration_s, matches=1, workers=1, seed=0,
+                                    out=match_dir, log=True, team_left="Left", team_right="Right", resume=False)
+    log_path = match_dir / "match.0.log"
+    replay = replay_log(log_path, html_out=match_dir / "replay.html", max_frames=1500)
+    return [""] + lines + [f"monitor log: {log_path}", f"replay: {replay}"]

@@ -11,9 +11,11 @@ from motion_studio.cli import app
 
 
 @app.command()
-def demo(out: Annotated[Path, typer.Option(help="output folder")] = Path("out")) -> None:
+def demo(out: Annotated[Path, typer.Option(help="output folder")] = Path("out"),
+         match_duration: Annotated[float, typer.Option(help="game time of the match, s (0 = no match)")] = 600.0,
+         players: Annotated[int, typer.Option(help="players per team in the match")] = 3) -> None:
     """Run the most complete job the toolkit does today and write its results to OUT."""
     from motion_studio.demo import run_demo
 
-    for line in run_demo(out):
+    for line in run_demo(out, match_duration, players):
         typer.echo(line)

@@ -72,13 +72,15 @@ def test_view_serves_on_loopback_only():
 
 
 def test_demo_writes_models_and_preview(tmp_path):
-    result = run_cli("demo", "--out", str(tmp_path))
+    result = run_cli("demo", "--out", str(tmp_path), "--match-duration", "2", "--players", "1")
     assert result.returncode == 0, result.stderr
     assert "4.6071" in result.stdout and "camera height in the crouch" in result.stdout
     for robot_type in range(5):
         assert (tmp_path / f"nao_type{robot_type}.xml").read_text().startswith("<mujoco")
         assert "<robot" in (tmp_path / f"nao_type{robot_type}.urdf").read_text()
     assert (tmp_path / "preview.html").stat().st_size > 10_000
+    assert "match-0      0:0" in result.stdout
+    assert (tmp_path / "match" / "results.jsonl").exists() and (tmp_path / "match" / "replay.html").exists()
 
 
 def test_bench_kinematics_prints_the_figures_as_json():
