@@ -33,6 +33,7 @@ _PARTS_PER_PLAYER = 5
 _new_polar = partial(tuple.__new__, Polar)
 _new_object = partial(tuple.__new__, VisibleObject)
 _new_line = partial(tuple.__new__, VisibleLine)
+_LINE_POINTS = FIELD_LINES_M.reshape(-1, 3)
 # Inward normals of the view pyramid's planes in the head frame (x right, y ahead, z up).
 _PLANES = np.array([[-1.0, _TAN_HALF_FOV, 0.0], [1.0, _TAN_HALF_FOV, 0.0],
                     [0.0, _TAN_HALF_FOV, -1.0], [0.0, _TAN_HALF_FOV, 1.0]])
@@ -100,17 +101,15 @@ def see(observers: list[Observer], ball_m: np.ndarray, players: list[PlayerParts
     if not observers:
         return []
     count = len(observers)
-    fixed = np.vstack([LANDMARK_POSITIONS_M, ball_m[None, :]])
     part_points = np.vstack([p.parts_m for p in players]) if players else np.zeros((0, 3))
-    points = np.vstack([fixed, part_points])                                    # (P, 3)
-    if config.lines:
-        points = np.vstack([points, FIELD_LINES_M.reshape(-1, 3)])
+    # rows: landmarks, ball, players' parts, then the field-line end points (static, cached)
+    points = np.vstack([LANDMARK_POSITIONS_M, ball_m[None, :], part_points] + ([_LINE_POINTS] if config.lines else []))
     cams = np.stack([o.position_m for o in observers])                          # (K, 3)
     rots = np.stack([o.rotation for o in observers])                            # (K, 3, 3)
-    rel = np.einsum("kji,kpj->kpi", rots, points[None, :, :] - cams[:, None, :])
+    rel = (points[None, :, :] - cams[:, None, :]) @ rots                        # R_headᵀ (p - c), (K, P, 3)
     if config.calibration:
         rel += np.stack([o.calibration_m for o in observers])[:, None, :]
-    object_count = fixed.shape[0] + part_points.shape[0]
+    object_count = LANDMARK_POSITIONS_M.shape[0] + 1 + part_points.shape[0]
     rel_objects = rel[:, :object_count]
     distance, theta, phi = polar(rel_objects)
     visible = (distance > MIN_DISTANCE_M) & (np.abs(theta) <= HALF_FOV_DEG) & (np.abs(phi) <= HALF_FOV_DEG)
