@@ -383,7 +383,14 @@ class World:
         if d.ncon == 0:
             return
         geoms = d.contact.geom
-        for i in np.nonzero((geoms == self.ball_geom).any(axis=1))[0].tolist():
+        hits = np.nonzero((geoms == self.ball_geom).any(axis=1))[0]
+        if hits.size == 0:
+            return
+        # A ball slower than the bounce speed against static geometry cannot bounce: the usual resting case.
+        slow = float(velocity_before @ velocity_before) <= self.params.ball_min_bounce_speed_m_s ** 2
+        if slow and not m.geom_bodyid[geoms[hits]].all(axis=1).any():
+            return
+        for i in hits.tolist():
             g1, g2 = int(geoms[i, 0]), int(geoms[i, 1])
             normal = d.contact.frame[i, :3]
             sign = 1.0 if g2 == self.ball_geom else -1.0   # the normal points from geom1 to geom2
