@@ -90,6 +90,6 @@ def play_match(out_dir: Path, duration_s: float, players_per_team: int) -> list[
     match_dir = out_dir / "match"
     lines, results = run_and_report(players=players_per_team, duration_s=duration_s, matches=1, workers=1, seed=0,
                                     out=match_dir, log=True, team_left="Left", team_right="Right", resume=False)
-    log_path = match_dir / "match.0.log"
+    log_path = match_dir / "match-0.log.gz"
     replay = replay_log(log_path, html_out=match_dir / "replay.html", max_frames=1500)
     return [""] + lines + [f"monitor log: {log_path}", f"replay: {replay}"]

@@ -21,7 +21,7 @@ def run_and_report(*, players: int, duration_s: float, matches: int, workers: in
     if not resume and checkpoint.exists():
         checkpoint.unlink()
     base = MatchConfig(team_left=team_left, team_right=team_right, players_per_team=players, duration_s=duration_s,
-                       seed=seed, log_path=str(out / "match.log") if log else None, match_id="match")
+                       seed=seed, log_path=str(out / "match.log.gz") if log else None, match_id="match")
     configs = batch_configs(base, matches, seed)
     if matches == 1 and workers <= 1:
         results = _single(configs[0], checkpoint)

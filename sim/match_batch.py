@@ -70,10 +70,15 @@ def run_one(config: MatchConfig, make_agent: AgentFactory) -> dict[str, Any]:
 
 def batch_configs(base: MatchConfig, matches: int, first_seed: int = 0) -> list[MatchConfig]:
     """``matches`` copies of ``base`` with seeds first_seed.. and ids ``<base id>-<seed>``."""
-    return [replace(base, seed=first_seed + i, match_id=f"{base.match_id}-{first_seed + i}",
-                    log_path=None if base.log_path is None else str(Path(base.log_path).with_suffix(
-                        f".{first_seed + i}.log")))
-            for i in range(matches)]
+    configs = []
+    for seed in range(first_seed, first_seed + matches):
+        match_id = f"{base.match_id}-{seed}"
+        log_path = None
+        if base.log_path is not None:  # "out/match.log.gz" -> "out/match-3.log.gz"
+            base_log = Path(base.log_path)
+            log_path = str(base_log.parent / (match_id + "".join(base_log.suffixes)))
+        configs.append(replace(base, seed=seed, match_id=match_id, log_path=log_path))
+    return configs
 
 
 def run_batch(configs: Iterable[MatchConfig], make_agent: AgentFactory, checkpoint: Path, workers: int = 1,
