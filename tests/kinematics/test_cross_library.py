@@ -63,6 +63,8 @@ def test_placo_model_agrees_with_mujoco(robot_type):
     data = mujoco.MjData(model)
     rng = np.random.default_rng(10 + robot_type)
     assert ik.robot.total_mass() == pytest.approx(spec.total_mass_kg, abs=1e-12)
+    for joint in spec.joints:  # PlaCo sees the spec's hinges and limits too
+        assert ik.robot.get_joint_limits(joint.perceptor) == pytest.approx([joint.min_rad, joint.max_rad])
     for _ in range(10):
         angles = random_pose(spec, rng)
         for name, value in zip(spec.joint_names, angles):
