@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import argparse
 import logging
+import math
 import socket
 import sys
 import threading
@@ -88,6 +89,23 @@ def connect(host: str, port: int, policy: ConnectionPolicy, stop: threading.Even
                             f" (last error: {error})", policy.connect_attempts)
 
 
+STATUS_EVERY_CYCLES = 250  # one status line per 5 s of server time: enough to watch, little to read
+
+
+def status_line(agent: Agent) -> str:
+    """What a person watching the agent wants to know: game state, self pose, ball, teammates heard."""
+    world = agent.world
+    pose = world.pose
+    where = "not localized" if pose is None else \
+        f"pose ({pose.x_m:.2f}, {pose.y_m:.2f}, {math.degrees(pose.heading_rad):.0f} deg)"
+    ball = world.ball
+    ball_text = "ball unseen" if ball is None or ball.x_m is None else f"ball ({ball.x_m:.2f}, {ball.y_m:.2f})"
+    heard = {unum: (round(t.x_m, 1), round(t.y_m, 1)) for unum, t in sorted(world.teammates.items())
+             if t.forward_m is None and t.x_m is not None}
+    return (f"t={world.now_s:.2f} {world.game.play_mode} #{world.unum} {where}, {ball_text}, "
+            f"teammates heard {heard}, last said {agent.said[-1] if agent.said else '-'}")
+
+
 def serve(sock: socket.socket, agent: Agent, stats: RunStats, stop: threading.Event | None = None) -> None:
     """Play one connection until the server closes it or ``stop`` is set.
 
@@ -108,6 +126,8 @@ def serve(sock: socket.socket, agent: Agent, stats: RunStats, stop: threading.Ev
             reply = SYN_ONLY
         stats.cycles += 1
         write_frame(sock, reply)
+        if stats.cycles % STATUS_EVERY_CYCLES == 0:
+            logger.info("%s", status_line(agent))
 
 
 def run(config: AgentConfig, host: str = DEFAULT_HOST, port: int = DEFAULT_PORT,
