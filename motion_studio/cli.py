@@ -21,6 +21,7 @@ COMMAND_MODULES = (
     "motion_studio.commands.bench_sim",
     "motion_studio.commands.agent",
     "motion_studio.commands.serve",
+    "motion_studio.commands.edit",
 )
 
 
