@@ -108,10 +108,13 @@ class EditorSession:
 
         Raises:
             MotionFormatError: the file does not parse (path, line, field): nothing is opened.
-            EditorError: a new file with an extension that names no format. OSError: unreadable file.
+            EditorError: a new file with an extension that names no format, or in a folder that does not
+                exist. OSError: unreadable file.
         """
         path = Path(path)
         if not path.exists():
+            if not path.parent.is_dir():
+                raise EditorError(f"{path}: folder {path.parent} does not exist", field="path")
             format = format_of(path)
             robot_spec(robot_type)  # a bad type fails before anything is made
             return cls(new_motion(path.stem, format, robot_spec(robot_type).joint_names), path, robot_type, None)
