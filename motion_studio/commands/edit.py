@@ -71,63 +71,42 @@ def bench_editor(
     motion: Annotated[Optional[Path], typer.Option(help="motion file to open (a copy is edited); default: a "
                                                         "built-in two-phase crouch")] = None,
     joint: Annotated[str, typer.Option(help="slider moved (wire name)")] = "llj3",
-    moves: Annotated[int, typer.Option(help="slider steps timed")] = 40,
+    moves: Annotated[int, typer.Option(help="slider steps timed in the browser")] = 40,
     screenshot: Annotated[Optional[Path], typer.Option(help="save a PNG of the editor here")] = None,
+    browser: Annotated[bool, typer.Option("--browser/--no-browser-part",
+                                          help="also time slider -> 3D view in headless Chromium")] = True,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object only")] = False,
 ) -> None:
-    """Time slider move -> updated 3D view in headless Chromium (Debian's; never downloaded). Figures only."""
+    """Time the editor: requests inside the server, and slider move -> updated 3D view in headless Chromium
+    (Debian's; never downloaded). Figures only."""
     import tempfile
 
+    from motion_studio.editor.benchmark import bench_requests, write_bench_motion
     from motion_studio.editor.browser import bench_slider_latency, browser_unavailable_reason
 
-    reason = browser_unavailable_reason()
-    if reason is not None:
-        typer.echo(f"cannot run the editor benchmark: {reason}", err=True)
-        raise typer.Exit(1)
     with tempfile.TemporaryDirectory() as folder:
-        path = motion
-        if path is None:
-            path = Path(folder) / "bench_crouch.xml"
-            path.write_text(BENCH_MOTION)
-        figures = bench_slider_latency(path, joint=joint, moves=moves, screenshot=screenshot)
+        path = motion if motion is not None else write_bench_motion(Path(folder))
+        figures: dict = {"requests": bench_requests(path)}
+        reason = browser_unavailable_reason() if browser else "not asked for"
+        if reason is None:
+            figures["browser"] = bench_slider_latency(path, joint=joint, moves=moves, screenshot=screenshot)
+        else:
+            figures["browser"] = {"skipped": reason}
     if as_json:
         typer.echo(json.dumps(figures))
         return
-    typer.echo(f"slider -> updated 3D view, {figures['moves']} moves of {figures['joint']} in {figures['browser']}:")
-    for key in ("median_ms", "p90_ms", "min_ms", "max_ms", "server_median_ms"):
-        typer.echo(f"{key:>18}: {figures[key]}")
-
-
-BENCH_MOTION = """<?xml version="1.0" encoding="UTF-8"?>
-<!-- motion-studio bench editor: a two-phase crouch written by hand for the benchmark -->
-<robot>
-\t<low_skills>
-\t\t<low_skill name="bench_crouch" firstPhase="down" />
-\t</low_skills>
-
-\t<phases>
-\t\t<phase name="down" next="up">
-\t\t\t<effectors>
-\t\t\t\t<lle3 end="30" />
-\t\t\t\t<lle4 end="-60" />
-\t\t\t\t<lle5 end="30" />
-\t\t\t\t<rle3 end="30" />
-\t\t\t\t<rle4 end="-60" />
-\t\t\t\t<rle5 end="30" />
-\t\t\t</effectors>
-\t\t\t<duration>500</duration>
-\t\t</phase>
-\t\t<phase name="up">
-\t\t\t<effectors>
-\t\t\t\t<lle3 end="0" />
-\t\t\t\t<lle4 end="0" />
-\t\t\t\t<lle5 end="0" />
-\t\t\t\t<rle3 end="0" />
-\t\t\t\t<rle4 end="0" />
-\t\t\t\t<rle5 end="0" />
-\t\t\t</effectors>
-\t\t\t<duration>500</duration>
-\t\t</phase>
-\t</phases>
-</robot>
-"""
+    requests = figures["requests"]
+    typer.echo("inside the editor (median per request, scene commands included):")
+    for key in ("set_joint_ms", "scrub_ms", "ik_ms", "scene_bytes_per_edit", "preview_wall_s",
+                "preview_realtime_factor"):
+        typer.echo(f"{key:>24}: {requests[key]}")
+    latency = figures["browser"]
+    if "skipped" in latency:
+        typer.echo(f"browser part skipped: {latency['skipped']}", err=True)
+        return
+    typer.echo(f"slider -> updated 3D view, {latency['moves']} moves of {latency['joint']} in {latency['browser']}:")
+    for key in ("median_ms", "p90_ms", "min_ms", "max_ms", "reply_median_ms", "server_median_ms"):
+        typer.echo(f"{key:>24}: {latency[key]}")
+    typer.echo(f"{'webgl':>24}: {latency['webgl']}")
+    typer.echo("(input event -> frame with the new pose drawn and the GPU done; reply = the new pose reached the "
+               "page; server = the editor's own work)")

@@ -9,6 +9,7 @@ from __future__ import annotations
 import contextlib
 import shutil
 import statistics
+import subprocess
 import tempfile
 from collections.abc import Iterator
 from pathlib import Path
@@ -25,6 +26,18 @@ def chromium_path() -> str | None:
         if candidate and Path(candidate).exists():
             return candidate
     return None
+
+
+def chromium_version() -> str:
+    """``Chromium 156.0.8078.79`` (the package's own answer; the user agent hides the minor numbers)."""
+    executable = chromium_path()
+    if executable is None:
+        return "Chromium (not installed)"
+    try:
+        output = subprocess.run([executable, "--version"], capture_output=True, text=True, timeout=30).stdout
+    except (OSError, subprocess.TimeoutExpired):
+        return "Chromium (version unknown)"
+    return " ".join(output.split()[:2]) or "Chromium (version unknown)"
 
 
 def browser_unavailable_reason() -> str | None:
@@ -62,6 +75,7 @@ def open_editor(context: Any, url: str) -> Any:
     page.wait_for_function("window.motionStudio && window.motionStudio.ready !== null")
     page.evaluate("window.motionStudio.ready")
     page.wait_for_function("window.motionStudio.state && window.motionStudio.state.open !== undefined")
+    page.evaluate("window.motionStudio.metrics.syncGpu = true")  # time to the pixels, not to the draw calls
     return page
 
 
@@ -69,8 +83,8 @@ def press_slider(page: Any, joint: str, key: str = "ArrowRight", times: int = 1)
     """Move a joint slider with the keyboard, one step per press, waiting for each view update.
 
     Returns:
-        The slider-to-view latency of each press [ms], as the page measured it (input event to the first
-        animation frame after the pose reached the viewer).
+        The slider-to-view latency of each press [ms], as the page measured it: from the input event to the
+        frame that shows the new pose, its pixels finished (``open_editor`` sets ``syncGpu``).
     """
     slider = page.locator(f"#slider-{joint}")
     slider.focus()
@@ -84,13 +98,19 @@ def press_slider(page: Any, joint: str, key: str = "ArrowRight", times: int = 1)
     return latencies
 
 
-def latency_figures(latencies_ms: list[float], server_ms: list[float]) -> dict[str, float | int]:
-    """Median, 90th percentile, min and max of the latencies, and the server's median share [ms]."""
+def latency_figures(latencies_ms: list[float], server_ms: list[float],
+                    reply_ms: list[float] | None = None) -> dict[str, float | int]:
+    """Median, 90th percentile, min and max of the latencies; medians of the server's share and of the time
+    to the reply (before the frame is drawn) [ms]."""
     ordered = sorted(latencies_ms)
     p90 = ordered[min(len(ordered) - 1, int(round(0.9 * (len(ordered) - 1))))]
-    return {"moves": len(ordered), "median_ms": round(statistics.median(ordered), 2), "p90_ms": round(p90, 2),
-            "min_ms": round(ordered[0], 2), "max_ms": round(ordered[-1], 2),
-            "server_median_ms": round(statistics.median(server_ms), 3) if server_ms else float("nan")}
+    figures: dict[str, float | int] = {
+        "moves": len(ordered), "median_ms": round(statistics.median(ordered), 2), "p90_ms": round(p90, 2),
+        "min_ms": round(ordered[0], 2), "max_ms": round(ordered[-1], 2),
+        "server_median_ms": round(statistics.median(server_ms), 3) if server_ms else float("nan")}
+    if reply_ms:
+        figures["reply_median_ms"] = round(statistics.median(reply_ms), 2)
+    return figures
 
 
 def bench_slider_latency(motion_path: Path, joint: str = "llj3", moves: int = 40, robot_type: int = 0,
@@ -115,19 +135,21 @@ def bench_slider_latency(motion_path: Path, joint: str = "llj3", moves: int = 40
             with headless_chromium() as context:
                 page = open_editor(context, server.url)
                 press_slider(page, joint, "ArrowRight", 3)  # warm-up: first frames compile shaders
-                page.evaluate("window.motionStudio.metrics.sliderLatenciesMs.length = 0;"
-                              "window.motionStudio.metrics.serverMs.length = 0")
+                page.evaluate("const m = window.motionStudio.metrics; m.sliderLatenciesMs.length = 0;"
+                              "m.serverMs.length = 0; m.replyMs.length = 0")
                 latencies = press_slider(page, joint, "ArrowRight", moves // 2)
                 latencies += press_slider(page, joint, "ArrowLeft", moves - moves // 2)
                 server_ms = page.evaluate("window.motionStudio.metrics.serverMs")
+                reply_ms = page.evaluate("window.motionStudio.metrics.replyMs")
+                renderer = page.evaluate("""() => { const gl = window.motionStudio.viewer.renderer.getContext();
+                    const info = gl.getExtension('WEBGL_debug_renderer_info');
+                    return info ? gl.getParameter(info.UNMASKED_RENDERER_WEBGL) : 'unknown'; }""")
                 if screenshot is not None:
                     screenshot.parent.mkdir(parents=True, exist_ok=True)
                     page.screenshot(path=str(screenshot))
-                agent = page.evaluate("navigator.userAgent")
         finally:
             server.stop()
-    figures: dict[str, Any] = dict(latency_figures(latencies, server_ms))
-    version = next((part.split("/")[1] for part in agent.split() if part.startswith(("Chrome/", "HeadlessChrome/"))),
-                   "unknown")
-    figures.update(motion=str(motion_path), joint=joint, browser=f"Chromium {version} (headless, --disable-gpu)")
+    figures: dict[str, Any] = dict(latency_figures(latencies, server_ms, reply_ms))
+    figures.update(motion=str(motion_path), joint=joint, browser=f"{chromium_version()} (headless, --disable-gpu)",
+                   webgl=renderer)
     return figures

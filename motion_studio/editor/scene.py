@@ -8,6 +8,7 @@ command), the commands exactly as meshcat's server would forward them.
 
 from __future__ import annotations
 
+import math
 import struct
 from collections.abc import Mapping
 
@@ -28,7 +29,14 @@ SIM_COLOUR = 0x4A7FE0
 COM_COLOUR = 0xE02020
 INSIDE_COLOUR = 0x20A040
 OUTSIDE_COLOUR = 0xE02020
+#: Bars of the support polygon (four sole boxes of a type-4 robot have a hull of at most 16 corners).
+MAX_SUPPORT_EDGES = 16
 _Y_TO_Z = transformations.rotation_matrix(np.pi / 2, [1, 0, 0])
+_PARKED = transformations.translation_matrix([0.0, 0.0, -10.0])  # unused bars, out of sight below the ground
+
+
+def _rgba(colour: int) -> list[float]:
+    return [((colour >> 16) & 0xFF) / 255.0, ((colour >> 8) & 0xFF) / 255.0, (colour & 0xFF) / 255.0, 1.0]
 
 
 def _msgpack_str(text: str) -> bytes:
@@ -99,8 +107,9 @@ class EditorScene:
         """Create every object once: ground, camera, robots, handles, CoM marker and support polygon."""
         vis = self.vis
         add_ground(vis, size_m=2.0)
+        vis["/Grid"].set_property("visible", False)  # meshcat's 20 m grid; the ground slab is enough
         # Both robots in view: the kinematic one at the origin, the simulated one 0.5 m to its right (+x).
-        frame_camera(vis, position_m=(1.1, 1.3, 0.65), target_m=(0.25, 0.0, 0.22))
+        frame_camera(vis, position_m=(0.8, 0.95, 0.5), target_m=(0.22, 0.0, 0.2))
         add_nao(vis, "nao", self.robot_type)
         add_nao(vis, "sim", self.robot_type, colour=SIM_COLOUR, opacity=0.9)
         self.set_sim_visible(False)
@@ -109,6 +118,11 @@ class EditorScene:
                                               _material(HANDLE_COLOURS[handle], 0.85))
         vis["com"]["ball"].set_object(geometry.Sphere(0.012), _material(COM_COLOUR))
         vis["com"]["line"].set_object(geometry.Cylinder(1.0, 0.002), _material(COM_COLOUR, 0.7))
+        vis["com"]["ground"].set_object(geometry.Cylinder(0.002, 0.012), _material(INSIDE_COLOUR))
+        # The support polygon is a fixed set of unit-length bars moved onto its edges: per-frame updates are
+        # transforms only (a new meshcat object per frame costs the browser tens of ms).
+        for edge in range(MAX_SUPPORT_EDGES):
+            vis["support"][str(edge)].set_object(geometry.Box([1.0, 0.004, 0.002]), _material(INSIDE_COLOUR))
 
     def show_pose(self, angles_rad: Mapping[str, float] | np.ndarray, handles: Mapping[str, np.ndarray] | None,
                   balance: Balance) -> None:
@@ -127,16 +141,26 @@ class EditorScene:
 
     def _show_support(self, balance: Balance) -> None:
         polygon = balance.support_xy_m
-        if self._polygon is not None and self._polygon.shape == polygon.shape and \
-                np.allclose(self._polygon, polygon, atol=1e-4) and self._inside == balance.inside:
-            return
-        self._polygon, self._inside = polygon.copy(), balance.inside
-        colour = INSIDE_COLOUR if balance.inside else OUTSIDE_COLOUR
-        if len(polygon) >= 2:
-            points = np.vstack([polygon.T, np.full(len(polygon), 0.002)]).astype(np.float32)
-            self.vis["support"].set_object(geometry.LineLoop(geometry.PointsGeometry(points),
-                                                             geometry.LineBasicMaterial(color=colour, linewidth=3)))
-        self.vis["com"]["ground"].set_object(geometry.Cylinder(0.002, 0.012), _material(colour))
+        if self._polygon is None or self._polygon.shape != polygon.shape or \
+                not np.allclose(self._polygon, polygon, atol=1e-5):
+            self._polygon = polygon.copy()
+            edges = list(zip(polygon, np.roll(polygon, -1, axis=0))) if len(polygon) >= 2 else []
+            for edge in range(MAX_SUPPORT_EDGES):
+                node = self.vis["support"][str(edge)]
+                if edge < len(edges):
+                    start, end = edges[edge]
+                    dx, dy = end - start
+                    pose = transformations.translation_matrix([(start[0] + end[0]) / 2, (start[1] + end[1]) / 2,
+                                                               0.001])
+                    pose = pose @ transformations.rotation_matrix(math.atan2(dy, dx), [0, 0, 1])
+                    node.set_transform(pose @ np.diag([max(math.hypot(dx, dy), 1e-4), 1.0, 1.0, 1.0]))
+                else:
+                    node.set_transform(_PARKED)
+        if balance.inside != self._inside:
+            self._inside = balance.inside
+            colour = _rgba(INSIDE_COLOUR if balance.inside else OUTSIDE_COLOUR)
+            self.vis["support"].set_property("color", colour)
+            self.vis["com"]["ground"].set_property("color", colour)
 
     def show_sim(self, body_poses: Mapping[str, np.ndarray] | None) -> None:
         """Place the simulated robot (a physics-preview sample); None hides it."""

@@ -71,6 +71,13 @@ class ThreadBackground:
         self.executor.shutdown(wait=False, cancel_futures=True)
 
 
+def _log_request(handler: tornado.web.RequestHandler) -> None:
+    """Requests at DEBUG, refusals and failures at WARNING (a page load is a dozen requests)."""
+    status = handler.get_status()
+    level = logging.DEBUG if status < 400 else logging.WARNING
+    logger.log(level, "%d %s %s", status, handler.request.method, handler.request.uri)
+
+
 def _allowed_hosts(port: int) -> set[str]:
     return {f"{HOST}:{port}", f"localhost:{port}"}
 
@@ -100,6 +107,13 @@ class FileHandler(_LoopbackHandler):
         self.write(self.path.read_bytes())
 
 
+class NoIconHandler(_LoopbackHandler):
+    """``/favicon.ico``: nothing (browsers ask for it; a 404 would show as an error in the console)."""
+
+    def get(self) -> None:
+        self.set_status(204)
+
+
 class TabSocket(tornado.websocket.WebSocketHandler):
     """One browser tab: its EditorTab, requests in, replies, events and scene frames out."""
 
@@ -116,6 +130,9 @@ class TabSocket(tornado.websocket.WebSocketHandler):
             raise tornado.web.HTTPError(403, "host not allowed")
 
     def open(self) -> None:  # type: ignore[override]
+        # Each edit answers with two small writes (scene frame, reply): with Nagle's algorithm the second
+        # waits for the client's delayed ACK, measured 40-150 ms per edit.
+        self.set_nodelay(True)
         self.tab = self.server.workspace.open_tab(self.window, self._notify)
         self._send(self.tab.hello())
 
@@ -191,8 +208,9 @@ class EditorServer:
                  ("/meshcat.js", MESHCAT_JS, "text/javascript; charset=utf-8")]
         routes: list[Any] = [(route, FileHandler, {"port": port, "path": path, "content_type": kind})
                              for route, path, kind in files]
+        routes.append(("/favicon.ico", NoIconHandler, {"port": port}))
         routes.append(("/ws", TabSocket, {"server": self}))
-        return tornado.web.Application(routes, websocket_max_message_size=1 << 20)
+        return tornado.web.Application(routes, websocket_max_message_size=1 << 20, log_function=_log_request)
 
     async def serve(self) -> None:
         """Serve until ``stop`` is called (or Ctrl-C decides so, see ``on_interrupt``)."""

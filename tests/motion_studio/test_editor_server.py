@@ -106,7 +106,7 @@ def test_a_tab_gets_the_scene_then_hello_and_an_edit_updates_the_scene_before_it
         built = scene_commands(first)
         objects = {c["path"] for c in built if c["type"] == "set_object"}
         assert {"/meshcat/nao/torso/shape", "/meshcat/sim/lthigh/shape", "/meshcat/handles/lfoot",
-                "/meshcat/com/ball", "/meshcat/support"} <= objects
+                "/meshcat/com/ball", "/meshcat/support/0"} <= objects
         hello = json.loads(second)
         assert hello["event"] == "hello" and len(hello["joints"]) == 22
         assert hello["state"]["keyframes"][1]["name"] == "lift" and hello["state"]["dirty"] is False

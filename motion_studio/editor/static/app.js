@@ -30,8 +30,12 @@ const app = {
 
 // What tests and benchmarks read: slider-to-view latencies and the server's share of them.
 window.motionStudio = {
-  metrics: { sliderLatenciesMs: [], serverMs: [] },
+  // syncGpu: wait for the GPU to finish the frame (1-pixel readPixels) before taking the time, so the
+  // latency covers the pixels, not only the draw calls; set by benchmarks and tests, off for users.
+  metrics: { sliderLatenciesMs: [], replyMs: [], serverMs: [], syncGpu: false, playFrames: 0, playWallS: null },
   get state() { return app.state; },
+  get viewer() { return app.viewer; },
+  get playing() { return app.playing; },
   ready: null,
   idle: () => waitIdle(),
 };
@@ -101,14 +105,15 @@ function onJson(message, onHello) {
   }
 }
 
-function request(op, args = {}) {
+// quiet: the caller shows errors itself (IK drags report in the IK section, not in the message list).
+function request(op, args = {}, quiet = false) {
   const id = app.nextId++;
   return new Promise((resolve) => {
     app.pending.set(id, { resolve, op, sentAt: performance.now() });
     app.ws.send(JSON.stringify({ id, op, ...args }));
   }).then((reply) => {
     if (reply.state) render(reply.state);
-    if (!reply.ok && reply.error) showError(reply.error, op);
+    if (!reply.ok && reply.error && !quiet) showError(reply.error, op);
     if (reply.warning) showMessage("warning", reply.warning);
     if (reply.notice) showMessage("notice", reply.notice);
     return reply;
@@ -118,7 +123,8 @@ function request(op, args = {}) {
 function waitIdle() {
   return new Promise((resolve) => {
     const check = () => {
-      if (app.pending.size === 0 && app.jointQueue.size === 0 && !app.playing) resolve();
+      if (app.pending.size === 0 && app.jointQueue.size === 0 && !app.playing && !app.timeInFlight &&
+          app.pendingTime === null) resolve();
       else setTimeout(check, 10);
     };
     check();
@@ -210,10 +216,17 @@ function sendJoint(wire, value, t0) {
   request("set_joint", { index, joint: wire, angle_deg: value, gesture: app.gesture }).then((reply) => {
     app.jointInFlight.delete(wire);
     if (reply.ok) {
-      // The reply comes after its scene frame: at the next animation frame the viewer has drawn the new pose.
+      const metrics = window.motionStudio.metrics;
+      metrics.replyMs.push(performance.now() - t0);
+      metrics.serverMs.push(reply.server_ms);
+      // The reply comes after its scene frame: in the next animation frame the viewer draws the new pose
+      // (its own frame callback was queued before this one).
       requestAnimationFrame(() => {
-        window.motionStudio.metrics.sliderLatenciesMs.push(performance.now() - t0);
-        window.motionStudio.metrics.serverMs.push(reply.server_ms);
+        if (metrics.syncGpu) {
+          const gl = app.viewer.renderer.getContext();
+          gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, new Uint8Array(4));
+        }
+        metrics.sliderLatenciesMs.push(performance.now() - t0);
       });
     }
     const next = app.jointQueue.get(wire);
@@ -459,17 +472,18 @@ function play() {
   let start = parseFloat($("time").value);
   if (start >= end - 1e-6) start = 0;
   const wallStart = performance.now();
+  window.motionStudio.metrics.playFrames = 0;
   app.playing = true;
   $("play").textContent = "■ Stop";
   const frame = () => {
     if (!app.playing) return;
     const t = Math.min(end, start + (performance.now() - wallStart) / 1000);  // real speed
-    if (!app.timeInFlight) scrubTo(t);
+    if (!app.timeInFlight) { scrubTo(t); window.motionStudio.metrics.playFrames += 1; }
     if (t >= end) {
+      window.motionStudio.metrics.playWallS = (performance.now() - wallStart) / 1000;
       app.playing = false;
       $("play").textContent = "▶ Play";
-      const finish = () => (app.timeInFlight ? setTimeout(finish, 10) : scrubTo(end));
-      finish();
+      scrubTo(end);  // the last pose, sent after the request in flight if there is one
       return;
     }
     requestAnimationFrame(frame);
@@ -506,7 +520,7 @@ function setupDrag() {
     viewer.camera.getWorldDirection(normal);
     app.drag = { name, plane: new THREE.Plane().setFromNormalAndCoplanarPoint(normal, hits[0].point),
                  offset: hits[0].point.clone().sub(node.getWorldPosition(new THREE.Vector3())),
-                 node, busy: false, last: null };
+                 node, busy: false, last: null, sent: null };
     app.gesture += 1;
     viewer.controls.enabled = false;
     $("ik-handle").value = name;
@@ -535,7 +549,7 @@ function setupDrag() {
     const drag = app.drag;
     app.drag = null;
     viewer.controls.enabled = true;
-    if (drag.last) sendIk(drag.name, drag.last, null);
+    if (drag.last && drag.last !== drag.sent) sendIk(drag.name, drag.last, null);  // where the pointer let go
   };
   canvas.addEventListener("pointerup", end);
   canvas.addEventListener("pointercancel", end);
@@ -545,6 +559,7 @@ function setupDrag() {
     if (!drag || drag.busy || !drag.last) return;
     drag.busy = true;
     const target = drag.last;
+    drag.sent = target;
     sendIk(drag.name, target, null).then(() => {
       drag.busy = false;
       if (app.drag === drag && drag.last !== target) sendDrag();
@@ -556,7 +571,13 @@ function sendIk(handle, position, rotation) {
   const args = { index: app.state.selected, handle, position_m: position, keep_com: $("ik-keep-com").checked,
                  gesture: app.gesture };
   if (rotation) args.rotation_deg = rotation;
-  return request("ik", args);
+  return request("ik", args, true).then((reply) => {
+    const status = $("ik-status");
+    status.className = reply.ok ? "" : "error";
+    status.textContent = reply.ok ? (reply.changed.length ? `moved ${reply.changed.join(", ")}` : "no change") :
+      `${reply.error.message} — the pose stays as it was`;
+    return reply;
+  });
 }
 
 // ------------------------------------------------------------------------------------------ wiring
@@ -632,8 +653,20 @@ function resizeView() {
   app.viewer.set_3d_pane_size(view.clientWidth, view.clientHeight);
 }
 
+// Software WebGL (SwiftShader, llvmpipe: headless browsers, machines without a GPU driver) takes ~70 ms
+// per frame with multisampling and shadow maps and ~35 ms without (measured, 970x650 px): drop both there.
+function softwareRenderer() {
+  const gl = document.createElement("canvas").getContext("webgl");
+  const info = gl && gl.getExtension("WEBGL_debug_renderer_info");
+  const name = info ? String(gl.getParameter(info.UNMASKED_RENDERER_WEBGL)) : "";
+  if (!/SwiftShader|llvmpipe|softpipe|Software/i.test(name)) return undefined;
+  const renderer = new MeshCat.THREE.WebGLRenderer({ antialias: false, alpha: true });
+  $("view").appendChild(renderer.domElement);
+  return renderer;
+}
+
 function main() {
-  app.viewer = new MeshCat.Viewer($("view"));
+  app.viewer = new MeshCat.Viewer($("view"), true, softwareRenderer());
   new ResizeObserver(resizeView).observe($("view"));
   resizeView();
   wire();
