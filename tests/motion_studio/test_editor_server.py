@@ -264,7 +264,8 @@ def test_cli_serves_on_loopback_and_warns_before_quitting_with_unsaved_changes(m
         assert "http://127.0.0.1:" in line, line + process.stderr.read()
         url = line.split("http://", 1)[1].split()[0]
         port = int(url.split(":")[1].rstrip("/"))
-        assert "<title>motion-studio editor</title>" in urllib.request.urlopen(f"http://{url}", timeout=10).read().decode()
+        page = urllib.request.urlopen(f"http://{url}", timeout=10).read().decode()
+        assert "<title>motion-studio editor</title>" in page
 
         async def edit_and_interrupt():
             editor = type("S", (), {"port": port})

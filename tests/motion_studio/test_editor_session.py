@@ -195,6 +195,8 @@ def test_reorder_of_webots_poses_moves_durations_and_keeps_time_zero_first(webot
                                      "00:01:300,Pose1,1.5,0.1,1.5,-0.1"]
     with pytest.raises(EditorError, match="XML"):
         session.set_links(0, "Pose3", None)
+    session.add_keyframe(1)  # repeats Pose3 as it is: its '*' stays '*' (not commanded)
+    assert motions.dumps(session.motion).splitlines()[3] == "00:01:300,Pose4,-1.2,0.1,*,*"
 
 
 def test_a_new_file_starts_at_the_zero_pose_and_is_written_on_the_first_save(tmp_path):

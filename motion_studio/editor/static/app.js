@@ -429,7 +429,12 @@ function drawPlot() {
   const sy = (v) => bottom - ((bottom - top) * (v - lo)) / (hi - lo);
   ctx.strokeStyle = "#ccd"; ctx.fillStyle = "#556"; ctx.lineWidth = 1;
   ctx.beginPath(); ctx.moveTo(left, top); ctx.lineTo(left, bottom); ctx.lineTo(right, bottom); ctx.stroke();
-  for (const v of [lo, 0, hi]) { ctx.fillText(`${v.toFixed(2)} m`, 2, sy(v) + 4); }
+  let lastLabelY = Infinity;  // bottom-up, skipping labels that would overlap
+  for (const v of [lo, 0, hi]) {
+    if (lastLabelY - sy(v) < 12) continue;
+    ctx.fillText(`${v.toFixed(2)} m`, 2, sy(v) + 4);
+    lastLabelY = sy(v);
+  }
   ctx.fillText("0 s", left - 4, height - 6);
   ctx.fillText(`${tEnd.toFixed(2)} s`, right - 34, height - 6);
   ctx.beginPath(); ctx.setLineDash([1, 3]); ctx.moveTo(sx(series.motion_duration_s), top);
