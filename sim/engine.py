@@ -24,14 +24,14 @@ from typing import Any
 import numpy as np
 
 from agent.protocol.effectors import (Beam, Init, InvalidAction, JointVelocity, PassMode, Say, Scene, Syn,
-                                      UnknownAction, parse_actions)
+                                      UnknownAction, parse_actions, split_joint_commands)
 from agent.protocol.errors import ProtocolError
 from agent.protocol.perceptors import GameState, Hear
-from agent.protocol.sense import format_sense
+from agent.protocol.sense_template import SenseTemplate, game_state_bytes, hear_bytes, time_bytes
 from sim.hearing import Hearing, Listener, Speaker
-from sim.perceptors import body_sense, wire_joint_order
+from sim.perceptors import wire_joint_order
 from sim.physics_params import PhysicsParams
-from sim.vision import CALIBRATION_ERROR_M, Observer, PlayerParts, VisionConfig, see
+from sim.vision import CALIBRATION_ERROR_M, Observer, PlayerParts, SeeWriter, VisionConfig, observe, see
 from sim.world import VISIBLE_PARTS, World
 
 logger = logging.getLogger(__name__)
@@ -147,6 +147,10 @@ class SimEngine:
         self._next_id = 1
         self._outbox: dict[int, bytes] = {}
         self._hears: dict[int, list[Hear]] = {}
+        self._bank_positions: dict[tuple[int, int], dict[str, int]] = {}
+        self._see_writer = SeeWriter(VISIBLE_PARTS)
+        # Visible-part bodies of the robots with a team, for vision: (their keys, world layout, body ids).
+        self._part_bodies: tuple[tuple[int, ...], int, np.ndarray] = ((), -1, np.zeros(0, dtype=np.intp))
 
     # ---- connections ---------------------------------------------------------------------------------
     def connect(self) -> int:
@@ -173,6 +177,15 @@ class SimEngine:
         link = self.agents.get(agent_id)
         if link is None:
             self._error(None, f"message from unknown agent id {agent_id}")
+            return
+        # The usual message (joint commands and (syn)) skips the action objects; its pattern admits only
+        # ASCII, so latin-1 decoding cannot hide a bad byte from it.
+        joints = split_joint_commands(payload.decode("latin-1") if isinstance(payload, bytes) else payload)
+        if joints is not None:
+            names, values, syn = joints
+            if names:
+                link.pending.append(dict(zip(names, values)))
+            link.synced = link.synced or syn
             return
         try:
             actions = parse_actions(payload)
@@ -227,7 +240,9 @@ class SimEngine:
             pending, link.pending = link.pending, []
             joints: dict[str, float] = {}
             for action in pending:
-                if isinstance(action, JointVelocity):
+                if type(action) is dict:   # joint commands of a usual message (see `receive`)
+                    joints.update(action)
+                elif isinstance(action, JointVelocity):
                     if not action.finite:
                         self._error(link, f"non-finite value for {action.effector} ignored")
                     else:
@@ -308,15 +323,23 @@ class SimEngine:
         if link.key not in self.world.by_key:
             self._error(link, "joint command before scene ignored")
             return
-        index_of = _effector_index(link.robot_type or 0)
+        robot_type = link.robot_type or 0
         start = self.world.motors.blocks[link.key].start
-        for effector, value in values.items():
-            i = index_of.get(effector)
-            if i is None:
-                self._error(link, f"robot type {link.robot_type} has no joint effector {effector!r}")
-                continue
-            index.append(start + i)
-            velocity.append(value)
+        positions = self._bank_positions.get((robot_type, start))
+        if positions is None:
+            positions = self._bank_positions[(robot_type, start)] = {
+                effector: start + i for effector, i in _effector_index(robot_type).items()}
+        try:
+            index.extend([positions[effector] for effector in values])
+            velocity.extend(values.values())
+        except KeyError:   # an effector this robot type lacks: take the known ones, report the others
+            for effector, value in values.items():
+                position = positions.get(effector)
+                if position is None:
+                    self._error(link, f"robot type {link.robot_type} has no joint effector {effector!r}")
+                    continue
+                index.append(position)
+                velocity.append(value)
 
     def _beam(self, link: AgentLink, beam: Beam) -> None:
         """REFERENCE §3.7: allowed play modes, clamp, noise, team frame, upright at z 0.4, velocities zeroed."""
@@ -342,33 +365,57 @@ class SimEngine:
                  if link.key in world.by_key and self.cycle > link.created_cycle]
         if not links:
             return {}
-        angles_deg = np.degrees(world.data.qpos[world.wire_qadr]).tolist()
-        rates_deg_s = np.degrees(world.data.qvel[world._root_ang]).tolist()
-        accelerations = world.accelerations.tolist()
-        sees = self._vision(links)
+        values, frp_masks = world.perceptor_rows()
+        sees = self._vision_bytes(links)
         referee = self.referee
-        now = self.time_s
-        plain_state = GameState(None, None, referee.score_left, referee.score_right, referee.game_time_s,
-                                referee.play_mode)
         out = {}
+        try:
+            now = time_bytes(self.time_s)
+            plain_state = game_state_bytes(GameState(None, None, referee.score_left, referee.score_right,
+                                                     referee.game_time_s, referee.play_mode))
+        except ProtocolError as error:   # e.g. a play mode that is no atom: never crash the cycle
+            for link in links:
+                link.perceptor_cycles += 1
+                self._error(link, f"sense message not formatted: {error}")
+            return out
         for link in links:
             row = world.row[link.key]
-            names = wire_joint_order(link.robot_type or 0)[0]
-            start = world.wire_offsets[row]
-            game_state = plain_state
-            if link.announce_identity:
-                link.announce_identity = False
-                game_state = GameState(link.unum, link.side, referee.score_left, referee.score_right,
-                                       referee.game_time_s, referee.play_mode)
-            sense = body_sense(now, game_state, self._hears.get(link.key, ()), rates_deg_s[row], accelerations[row],
-                               names, angles_deg[start:start + len(names)], world.foot_forces(link.key),
-                               sees.get(link.key))
             link.perceptor_cycles += 1
             try:
-                out[link.key] = format_sense(sense)
+                game_state = plain_state
+                if link.announce_identity:
+                    link.announce_identity = False
+                    game_state = game_state_bytes(GameState(link.unum, link.side, referee.score_left,
+                                                            referee.score_right, referee.game_time_s,
+                                                            referee.play_mode))
+                hears = self._hears.get(link.key)
+                out[link.key] = _sense_template(link.robot_type or 0).format(
+                    values[row], now, game_state, frp_masks[row], sees.get(link.key),
+                    [hear_bytes(hear) for hear in hears] if hears else ())
             except ProtocolError as error:   # e.g. a team name that is no atom: never crash the cycle
                 self._error(link, f"sense message not formatted: {error}")
         return out
+
+    def _vision_bytes(self, links: list[AgentLink]) -> dict[int, bytes]:
+        """The See predicate of every robot that sees this cycle, written straight from the vision arrays."""
+        seeing = [link for link in links if link.perceptor_cycles % VISION_INTERVAL == 0]
+        if not seeing:
+            return {}
+        world = self.world
+        data = world.data
+        players = [link for link in self.agents.values() if link.team is not None and link.key in world.by_key]
+        keys = tuple(link.key for link in players)
+        if keys != self._part_bodies[0] or world.layout_version != self._part_bodies[1]:
+            bodies = [world.by_key[key].part_bodies for key in keys]
+            self._part_bodies = (keys, world.layout_version,
+                                 np.concatenate(bodies) if bodies else np.zeros(0, dtype=np.intp))
+        heads = [world.by_key[link.key].head_body for link in seeing]
+        a = world.ball_qadr
+        sighting = observe(data.xpos[heads], data.xmat[heads].reshape(-1, 3, 3),
+                           np.array([link.calibration_m for link in seeing]), data.qpos[a:a + 3],
+                           data.xpos[self._part_bodies[2]], self.rng, self.vision)
+        frames = self._see_writer.frames(sighting, tuple((link.team, link.unum or 0) for link in players))
+        return {link.key: frame for link, frame in zip(seeing, frames)}
 
     def _vision(self, links: list[AgentLink]) -> dict[int, Any]:
         world = self.world
@@ -400,6 +447,18 @@ class SimEngine:
 
 
 _EFFECTOR_INDEX: dict[int, dict[str, int]] = {}
+_SENSE_TEMPLATES: dict[int, SenseTemplate] = {}
+
+
+def _sense_template(robot_type: int) -> SenseTemplate:
+    """The sense-message writer of a robot type: its joints in wire order, its foot sensors in spec order
+    (the order of `World.perceptor_rows`)."""
+    template = _SENSE_TEMPLATES.get(robot_type)
+    if template is None:
+        from kinematics.spec import robot_spec
+        feet = [sensor.name for sensor in robot_spec(robot_type).sensors if sensor.kind == "force"]
+        template = _SENSE_TEMPLATES[robot_type] = SenseTemplate(wire_joint_order(robot_type)[0], feet)
+    return template
 
 
 def _effector_index(robot_type: int) -> dict[str, int]:

@@ -6,6 +6,10 @@ rest; sampled before the physics step, see `sim.world`); FRP per foot with conta
 contact point relative to the foot box centre and the summed force, both in foot axes. Joints are listed
 in the server's wire order (REFERENCE §3.3: hj1 hj2, right arm, left arm, right leg, left leg; the toe
 joint of type 4 after each ankle roll, unverified); `agent.protocol.format_sense` places See and FRP.
+
+`body_sense` is the typed path (tests compare against it); the engine writes the same bytes straight from the
+world's arrays (`sim.world.World.perceptor_rows`) with `agent.protocol.sense_template`, because building a
+`Sense` of dataclasses per robot and cycle cost more than the physics.
 """
 
 from __future__ import annotations

@@ -19,6 +19,8 @@ from functools import partial
 import numpy as np
 
 from agent.protocol.perceptors import Polar, See, VisibleLine, VisibleObject, VisiblePlayer
+from agent.protocol.sense_template import (LINE_TEMPLATE, PLAYER_CLOSE_BYTES, SEE_CLOSE_BYTES, SEE_OPEN_BYTES,
+                                           SEE_SEPARATOR_BYTES, object_template, part_template, player_template)
 from sim.field import FIELD_LINES_M, LANDMARK_NAMES, LANDMARK_POSITIONS_M
 
 HALF_FOV_DEG = 60.0
@@ -30,6 +32,9 @@ SIGMA_PHI_DEG = 0.1225
 _TAN_HALF_FOV = math.tan(math.radians(HALF_FOV_DEG))
 _SIGMAS = np.array([0.0, SIGMA_THETA_DEG, SIGMA_PHI_DEG])
 _PARTS_PER_PLAYER = 5
+_FIXED_COUNT = len(LANDMARK_NAMES) + 1   # landmarks and the ball
+_SEPARATED_LINE = SEE_SEPARATOR_BYTES + LINE_TEMPLATE
+_SEPARATOR_SIZE = len(SEE_SEPARATOR_BYTES)
 _new_polar = partial(tuple.__new__, Polar)
 _new_object = partial(tuple.__new__, VisibleObject)
 _new_line = partial(tuple.__new__, VisibleLine)
@@ -37,6 +42,7 @@ _LINE_POINTS = FIELD_LINES_M.reshape(-1, 3)
 # Inward normals of the view pyramid's planes in the head frame (x right, y ahead, z up).
 _PLANES = np.array([[-1.0, _TAN_HALF_FOV, 0.0], [1.0, _TAN_HALF_FOV, 0.0],
                     [0.0, _TAN_HALF_FOV, -1.0], [0.0, _TAN_HALF_FOV, 1.0]])
+_PLANES_T = _PLANES.T
 
 
 @dataclass(frozen=True)
@@ -86,6 +92,66 @@ def polar(rel: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return distance, theta, phi
 
 
+@dataclass(frozen=True)
+class Sighting:
+    """What every observer of one cycle sees, as arrays (noise applied); `see` and `SeeWriter` read it.
+
+    Objects: rows (seen_k[i], seen_p[i]) of the point table (landmarks, ball, then 5 parts per player),
+    sorted by observer then point; values[i] = (d [m], θ [deg], φ [deg]). Lines: line_k[j] is the observer
+    of line j, line_values[2j], line_values[2j + 1] its two ends. object_rows / line_rows: observer k owns
+    objects object_rows[k]:object_rows[k + 1] and lines line_rows[k]:line_rows[k + 1].
+    """
+
+    seen_k: np.ndarray
+    seen_p: np.ndarray
+    values: np.ndarray
+    line_k: np.ndarray
+    line_values: np.ndarray
+    object_rows: np.ndarray
+    line_rows: np.ndarray
+
+
+def observe(cams_m: np.ndarray, rotations: np.ndarray, calibration_m: np.ndarray, ball_m: np.ndarray,
+            part_points_m: np.ndarray, rng: np.random.Generator, config: VisionConfig = VisionConfig()) -> Sighting:
+    """The vision of K observers at once (the numpy core of `see` and the engine's writer).
+
+    Args:
+        cams_m: camera positions (K, 3); rotations: head frames (K, 3, 3), axes as columns;
+        calibration_m: each connection's calibration error (K, 3), head frame; ball_m: ball centre (3,);
+        part_points_m: the visible parts of every robot with a team, connection order, 5 rows each (5N, 3);
+        rng: the world's generator (one draw for all observers, objects then lines, so runs are
+            reproducible); config: model switches.
+    """
+    count = cams_m.shape[0]
+    # rows: landmarks, ball, players' parts, then the field-line end points (static, cached)
+    points = np.concatenate((LANDMARK_POSITIONS_M, ball_m[None, :], part_points_m)
+                            + ((_LINE_POINTS,) if config.lines else ()))
+    rel = (points - cams_m[:, None, :]) @ rotations                              # R_headᵀ (p - c), (K, P, 3)
+    if config.calibration:
+        rel += calibration_m[:, None, :]
+    object_count = _FIXED_COUNT + part_points_m.shape[0]
+    flat = rel[:, :object_count].reshape(-1, 3)
+    if config.lines:
+        clipped, line_visible = _clip_to_pyramid(rel[:, object_count:].reshape(count, -1, 2, 3))
+        line_k, line_i = np.nonzero(line_visible)
+        flat = np.concatenate((flat, clipped[line_k, line_i].reshape(-1, 3)))   # 2 rows per line
+    else:
+        line_k = np.zeros(0, dtype=np.intp)
+    # One polar conversion for the objects of every observer and the clipped line ends.
+    table = np.stack(polar(flat), axis=1)
+    objects = table[:count * object_count]
+    visible = ((objects[:, 0] > MIN_DISTANCE_M) & (np.abs(objects[:, 1]) <= HALF_FOV_DEG)
+               & (np.abs(objects[:, 2]) <= HALF_FOV_DEG))
+    seen = np.flatnonzero(visible)
+    seen_k, seen_p = np.divmod(seen, object_count)
+    chosen = np.concatenate((objects[seen], table[count * object_count:]))
+    if config.noise:
+        chosen = _noisy(chosen, rng)
+    bounds = np.arange(count + 1)
+    return Sighting(seen_k, seen_p, chosen[:seen.size], line_k, chosen[seen.size:],
+                    np.searchsorted(seen_k, bounds), np.searchsorted(line_k, bounds))
+
+
 def see(observers: list[Observer], ball_m: np.ndarray, players: list[PlayerParts],
         rng: np.random.Generator, config: VisionConfig = VisionConfig()) -> list[See]:
     """The vision frame of each observer (same order), players and lines in the server's order.
@@ -100,38 +166,73 @@ def see(observers: list[Observer], ball_m: np.ndarray, players: list[PlayerParts
     """
     if not observers:
         return []
-    count = len(observers)
     part_points = np.vstack([p.parts_m for p in players]) if players else np.zeros((0, 3))
-    # rows: landmarks, ball, players' parts, then the field-line end points (static, cached)
-    points = np.vstack([LANDMARK_POSITIONS_M, ball_m[None, :], part_points] + ([_LINE_POINTS] if config.lines else []))
-    cams = np.stack([o.position_m for o in observers])                          # (K, 3)
-    rots = np.stack([o.rotation for o in observers])                            # (K, 3, 3)
-    rel = (points[None, :, :] - cams[:, None, :]) @ rots                        # R_headᵀ (p - c), (K, P, 3)
-    if config.calibration:
-        rel += np.stack([o.calibration_m for o in observers])[:, None, :]
-    object_count = LANDMARK_POSITIONS_M.shape[0] + 1 + part_points.shape[0]
-    rel_objects = rel[:, :object_count]
-    distance, theta, phi = polar(rel_objects)
-    visible = (distance > MIN_DISTANCE_M) & (np.abs(theta) <= HALF_FOV_DEG) & (np.abs(phi) <= HALF_FOV_DEG)
-    seen_k, seen_p = np.nonzero(visible)
-    values = np.stack([distance[seen_k, seen_p], theta[seen_k, seen_p], phi[seen_k, seen_p]], axis=1)
-    if config.lines:
-        clipped, line_visible = _clip_to_pyramid(rel[:, object_count:].reshape(count, -1, 2, 3))
-        line_k, line_i = np.nonzero(line_visible)
-        ends = clipped[line_k, line_i].reshape(-1, 3)                           # 2 rows per line
-        line_values = np.stack(polar(ends), axis=1)
-    else:
-        line_k = np.zeros(0, dtype=np.intp)
-        line_values = np.zeros((0, 3))
-    if config.noise:
-        values = _noisy(values, rng)
-        line_values = _noisy(line_values, rng)
+    sighting = observe(np.stack([o.position_m for o in observers]), np.stack([o.rotation for o in observers]),
+                       np.stack([o.calibration_m for o in observers]), ball_m, part_points, rng, config)
     names = LANDMARK_NAMES + ("B",)
-    object_rows = np.searchsorted(seen_k, np.arange(count + 1))
-    line_rows = np.searchsorted(line_k, np.arange(count + 1))
-    seen_list, value_list, line_list = seen_p.tolist(), values.tolist(), line_values.tolist()
+    object_rows, line_rows = sighting.object_rows, sighting.line_rows
+    seen_list, value_list = sighting.seen_p.tolist(), sighting.values.tolist()
+    line_list = sighting.line_values.tolist()
     return [_frame(seen_list[object_rows[k]:object_rows[k + 1]], value_list[object_rows[k]:object_rows[k + 1]],
-                   line_list[2 * line_rows[k]:2 * line_rows[k + 1]], names, players) for k in range(count)]
+                   line_list[2 * line_rows[k]:2 * line_rows[k + 1]], names, players) for k in range(len(observers))]
+
+
+class SeeWriter:
+    """Writes the See predicate of each observer of a `Sighting` straight to bytes (no `See` objects).
+
+    The item spellings come from agent.protocol.sense_template; the items of every point of the table (an
+    object, or a part opening and/or closing its player) are built once per set of players and picked per
+    cycle by index, and each frame's numbers go through one ``bytes % tuple``.
+
+    Args:
+        part_names: the 5 visible parts of a robot in the point table's order (sim.world.VISIBLE_PARTS).
+    """
+
+    def __init__(self, part_names: tuple[str, ...]) -> None:
+        self.part_names = part_names
+        self._players: tuple[tuple[str, int | None], ...] | None = None
+        self._items = np.zeros(0, dtype=object)
+
+    def frames(self, sighting: Sighting, players: tuple[tuple[str, int | None], ...]) -> list[bytes]:
+        """One ``(See ...)`` per observer of ``sighting``.
+
+        Args:
+            players: (team name, unum) of the robots whose parts are in the point table, in its order.
+        """
+        if players != self._players:
+            self._items = _item_table(players, self.part_names)
+            self._players = players
+        seen_k, seen_p = sighting.seen_k, sighting.seen_p
+        # A part opens its player when the previous seen point is not the same player's (or another
+        # observer's), and closes it when the next one is not.
+        owner = seen_k * (len(players) + _FIXED_COUNT + 1) + np.maximum(seen_p - _FIXED_COUNT, -1) // _PARTS_PER_PLAYER
+        change = np.empty(owner.size + 1, dtype=bool)
+        change[0] = change[-1] = True
+        np.not_equal(owner[1:], owner[:-1], out=change[1:-1])
+        items = self._items[seen_p * 4 + change[:-1] * 2 + change[1:]].tolist()
+        values = sighting.values.ravel().tolist()
+        line_values = sighting.line_values.ravel().tolist()
+        object_rows, line_rows = sighting.object_rows.tolist(), sighting.line_rows.tolist()
+        out = []
+        for k in range(len(object_rows) - 1):
+            a, b, c, d = object_rows[k], object_rows[k + 1], line_rows[k], line_rows[k + 1]
+            body = b"".join(items[a:b]) + _SEPARATED_LINE * (d - c)
+            out.append((SEE_OPEN_BYTES + body[_SEPARATOR_SIZE:] + SEE_CLOSE_BYTES)
+                       % (*values[3 * a:3 * b], *line_values[6 * c:6 * d]))
+        return out
+
+
+def _item_table(players: tuple[tuple[str, int | None], ...], part_names: tuple[str, ...]) -> np.ndarray:
+    """Item template per (point, opens its player, closes its player), flattened as point * 4 + 2 open + close."""
+    rows = [[SEE_SEPARATOR_BYTES + object_template(name)] * 4 for name in LANDMARK_NAMES + ("B",)]
+    for team, unum in players:
+        opening = SEE_SEPARATOR_BYTES + player_template(team, unum)
+        for part in part_names:
+            item = part_template(part)
+            rows.append([item, item + PLAYER_CLOSE_BYTES, opening + item, opening + item + PLAYER_CLOSE_BYTES])
+    table = np.empty(4 * len(rows), dtype=object)
+    table[:] = [item for row in rows for item in row]
+    return table
 
 
 def _noisy(values: np.ndarray, rng: np.random.Generator) -> np.ndarray:
@@ -146,18 +247,13 @@ def _clip_to_pyramid(segments: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Clip head-frame segments (K, L, 2, 3) to the view pyramid; returns the clipped ends and a mask."""
     start, end = segments[..., 0, :], segments[..., 1, :]
     direction = end - start
-    at_start = start @ _PLANES.T                     # (K, L, 4): signed distance of the start to each plane
-    along = direction @ _PLANES.T                    # rate of change along the segment
-    low = np.zeros(at_start.shape[:2])
-    high = np.ones(at_start.shape[:2])
+    at_start = start @ _PLANES_T                     # (K, L, 4): signed distance of the start to each plane
+    along = direction @ _PLANES_T                    # rate of change along the segment
     with np.errstate(divide="ignore", invalid="ignore"):
         t_cross = -at_start / along
-    entering = along > 0
-    leaving = along < 0
-    low = np.maximum(low, np.where(entering, t_cross, -np.inf).max(axis=2))
-    high = np.minimum(high, np.where(leaving, t_cross, np.inf).min(axis=2))
-    parallel_out = ((along == 0) & (at_start < 0)).any(axis=2)
-    visible = (low < high) & ~parallel_out
+    low = np.maximum(0.0, np.where(along > 0, t_cross, -np.inf).max(axis=2))    # entering a plane
+    high = np.minimum(1.0, np.where(along < 0, t_cross, np.inf).min(axis=2))    # leaving a plane
+    visible = (low < high) & ~((along == 0) & (at_start < 0)).any(axis=2)
     clipped = np.stack([start + low[..., None] * direction, start + high[..., None] * direction], axis=2)
     return clipped, visible
 

@@ -105,6 +105,8 @@ class World:
         """Wall time spent inside mujoco.mj_step [s] (for benchmarks)."""
         self._ball_touchers: list[tuple[str, int]] = []
         self._touching_pairs: list[tuple[tuple[str, int], tuple[str, int]]] = []
+        self.layout_version = 0
+        """Counts recompiles: cached model addresses elsewhere are stale when it changes."""
         self._reindex()
         mujoco.mj_forward(self.model, self.data)
 
@@ -277,9 +279,36 @@ class World:
         self._root_lin = self.root_dof[:, None] + np.arange(3)
         self._root_ang = self.root_dof[:, None] + np.arange(3, 6)
         self.row = {key: i for i, key in enumerate(self.order)}
+        self._index_perceptor_rows()
+        self.layout_version += 1
         self.velocity_samples = np.array([r.velocity_sample for r in self.by_key.values()]).reshape(-1, 3)
         self.accelerations = np.array([r.acc_m_s2 for r in self.by_key.values()]).reshape(-1, 3)
         self.head_bodies = np.array([r.head_body for r in self.by_key.values()], dtype=np.intp)
+
+    def _index_perceptor_rows(self) -> None:
+        """Gather indices of `perceptor_rows` (after every recompile): one row per robot into the values
+        [gyro of every robot | accelerations | wire-ordered angles | 6 FRP values per foot sensor]."""
+        from sim.perceptors import wire_joint_order
+        robots = list(self.by_key.values())
+        count, angle_count, sensor_count = len(robots), self.wire_qadr.size, self.sensor_geom.size
+        rows: list[list[int]] = []
+        feet: list[list[int]] = []
+        for r, robot in enumerate(robots):
+            first_angle = 6 * count + self.wire_offsets[r]
+            row = [3 * r, 3 * r + 1, 3 * r + 2, 3 * (count + r), 3 * (count + r) + 1, 3 * (count + r) + 2]
+            row += range(first_angle, first_angle + len(wire_joint_order(robot.robot_type)[0]))
+            for slot in robot.sensor_slots.values():
+                row += range(6 * (count + slot) + angle_count, 6 * (count + slot + 1) + angle_count)
+            rows.append(row)
+            feet.append(list(robot.sensor_slots.values()))
+        width = max(map(len, rows), default=0)
+        foot_width = max(map(len, feet), default=0)
+        self._perceptor_gather = np.array([row + [0] * (width - len(row)) for row in rows],
+                                          dtype=np.intp).reshape(count, width)
+        # Missing feet point at an extra, never active sensor slot.
+        self._foot_gather = np.array([slots + [sensor_count] * (foot_width - len(slots)) for slots in feet],
+                                     dtype=np.intp).reshape(count, foot_width)
+        self._foot_bits = 1 << np.arange(foot_width)
 
     def _apply_collision_bits(self, robot: Robot) -> None:
         m = self.model
@@ -462,6 +491,23 @@ class World:
         self.frp_active = active
 
     # ---- sensor readings ------------------------------------------------------------------------------
+    def perceptor_rows(self) -> tuple[list[list[float]], list[int]]:
+        """Every robot's perceptor values in one gather, for the sense-message writer (rows in `order`).
+
+        Returns:
+            (values, feet): values[r] = gyro x, y, z [deg/s], accelerometer x, y, z [m/s²] (see
+            `accelerometer_m_s2`), hinge angles [deg] in wire order, then per foot sensor (spec order) its
+            contact point x, y, z [m] and force x, y, z [N] in foot axes, stale for a foot without contact
+            (the layout of agent.protocol.sense_template.SenseTemplate); feet[r]: bit i set when the
+            robot's i-th foot sensor has contact. Rows may hold padding after their values.
+        """
+        d = self.data
+        source = np.concatenate((np.degrees(d.qvel[self._root_ang]).ravel(), self.accelerations.ravel(),
+                                 np.degrees(d.qpos[self.wire_qadr]),
+                                 np.concatenate((self.frp_point, self.frp_force), axis=1).ravel()))
+        contact = np.append(self.frp_active, False)
+        return source[self._perceptor_gather].tolist(), (contact[self._foot_gather] @ self._foot_bits).tolist()
+
     def joint_angles_rad(self, key: int) -> np.ndarray:
         """Hinge angles of one robot in spec order [rad]."""
         return self.data.qpos[self.motors.qadr[self.motors.span(key)]]

@@ -34,7 +34,7 @@ _FRP_BEFORE_JOINT = {"rf": "rlj6", "lf": "llj6", "rf1": "rlj7", "lf1": "llj7"}
 _SEE_AFTER_JOINT = "hj2"
 
 
-def _server_layout(sense: Sense) -> tuple[list[str], list[ForceResistance]]:
+def server_layout(sense: Sense) -> tuple[list[str], list[ForceResistance]]:
     """The predicate order rcssserver3d uses for ``sense``'s content (REFERENCE §3.3), and the FRPs in it.
 
     ``time``, ``GS``, the hears, ``GYR``, ``ACC``, then the joints in ``sense.joints`` order with ``See``
@@ -81,17 +81,20 @@ def _server_layout(sense: Sense) -> tuple[list[str], list[ForceResistance]]:
     return order, frps
 
 
-# Templates: str.format with ".2f" is printf "%.2f" done in C, much cheaper per value than a Python call.
-# (It writes every NaN as "nan", where glibc writes "-nan" for a NaN with the sign bit set.)
-_HJ = "(HJ (n {}) (ax {:.2f}))".format
-_FRP = "(FRP (n {}) (c {:.2f} {:.2f} {:.2f}) (f {:.2f} {:.2f} {:.2f}))".format
-_TIME = "(time (now {:.2f}))".format
-_GYR = "(GYR (n {}) (rt {:.2f} {:.2f} {:.2f}))".format
-_ACC = "(ACC (n {}) (a {:.2f} {:.2f} {:.2f}))".format
-_OBJECT = "({} (pol {:.2f} {:.2f} {:.2f}))".format
-_PART = " ({} (pol {:.2f} {:.2f} {:.2f}))".format
-_LINE = "(L (pol {:.2f} {:.2f} {:.2f}) (pol {:.2f} {:.2f} {:.2f}))".format
-_MYPOS = "(mypos {:.2f} {:.2f} {:.2f})".format
+# Spellings of the predicates as printf templates: the one definition, used here value by value and by
+# agent.protocol.sense_template for whole messages at once. "%.2f" is done in C, far cheaper per value
+# than a Python call, and gives the same digits as the server's printf (Python writes every NaN "nan").
+HJ = "(HJ (n %s) (ax %.2f))"
+FRP = "(FRP (n %s) (c %.2f %.2f %.2f) (f %.2f %.2f %.2f))"
+TIME = "(time (now %.2f))"
+GYR = "(GYR (n %s) (rt %.2f %.2f %.2f))"
+ACC = "(ACC (n %s) (a %.2f %.2f %.2f))"
+SEE_OPEN, SEE_SEPARATOR, SEE_CLOSE = "(See ", " ", ")"
+OBJECT = "(%s (pol %.2f %.2f %.2f))"
+PLAYER_OPEN, PLAYER_ID, PLAYER_CLOSE = "(P (team %s)", " (id %d)", ")"
+PART = " (%s (pol %.2f %.2f %.2f))"
+LINE = "(L (pol %.2f %.2f %.2f) (pol %.2f %.2f %.2f))"
+MYPOS = "(mypos %.2f %.2f %.2f)"
 
 _ATOM_TEXT = r"[!-'*-~]+"
 _ATOM = re.compile(_ATOM_TEXT)
@@ -114,7 +117,7 @@ def format_sense(sense: Sense) -> bytes:
         frps = list(sense.frp.values())
         _check_counts(sense, order)
     else:
-        order, frps = _server_layout(sense)  # type: ignore[assignment]
+        order, frps = server_layout(sense)  # type: ignore[assignment]
     out: list[str] = []
     atoms: list[str] = []  # names and messages, checked at once at the end
     joints = iter(sense.joints.items())
@@ -123,36 +126,48 @@ def format_sense(sense: Sense) -> bytes:
     for kind in order:
         if kind == "HJ":
             name, angle_deg = next(joints)
-            out.append(_HJ(name, angle_deg))
+            out.append(HJ % (name, angle_deg))
             atoms.append(name)
         elif kind == "FRP":
             frp = next(frp_iter)
-            out.append(_FRP(frp.name, *frp.contact_m, *frp.force_n))
+            out.append(FRP % (frp.name, *frp.contact_m, *frp.force_n))
             atoms.append(frp.name)
         elif kind == "See":
             out.append(_format_see(sense.see, atoms, out))  # type: ignore[arg-type]
         elif kind == "hear":
-            out.append(_format_hear(next(hears), atoms))
+            out.append(hear_text(next(hears), atoms))
         elif kind == "time":
-            out.append(_TIME(sense.time.now_s))  # type: ignore[union-attr]
+            out.append(TIME % (sense.time.now_s,))  # type: ignore[union-attr]
         elif kind == "GS":
-            out.append(_format_game_state(sense.game_state, atoms))  # type: ignore[arg-type]
+            out.append(game_state_text(sense.game_state, atoms))  # type: ignore[arg-type]
         elif kind == "GYR":
-            out.append(_GYR(sense.gyro.name, *sense.gyro.rate_deg_s))  # type: ignore[union-attr]
+            out.append(GYR % (sense.gyro.name, *sense.gyro.rate_deg_s))  # type: ignore[union-attr]
             atoms.append(sense.gyro.name)  # type: ignore[union-attr]
         elif kind == "ACC":
-            out.append(_ACC(sense.acc.name, *sense.acc.acc_m_s2))  # type: ignore[union-attr]
+            out.append(ACC % (sense.acc.name, *sense.acc.acc_m_s2))  # type: ignore[union-attr]
             atoms.append(sense.acc.name)  # type: ignore[union-attr]
         else:
             out.append(_format_agent_state(sense.agent_state))  # type: ignore[arg-type]
+    written = "".join(out)
+    check_atoms(atoms, written)
+    return written.encode("ascii")
+
+
+def check_atoms(atoms: list[str], written: str) -> None:
+    """Raise unless every name or message in ``atoms`` is a valid atom.
+
+    Args:
+        atoms: the names and messages written; written: the text so far (for the error's offset).
+
+    Raises:
+        ProtocolError: the first invalid one (empty, or holding a space or parenthesis).
+    """
     joined = " ".join(atoms)  # one regex call for all names; the space count catches "a b" as one name
     if atoms and (_ATOM_LIST.fullmatch(joined) is None or joined.count(" ") != len(atoms) - 1):
         bad = next(atom for atom in atoms if _ATOM.fullmatch(atom) is None)
-        written = "".join(out)
         offset = written.find(bad) if bad else len(written)
         raise ProtocolError.at(f"{bad!r} is not a valid atom (empty, or holds a space or parenthesis)",
                                written, max(offset, 0))
-    return "".join(out).encode("ascii")
 
 
 def _check_counts(sense: Sense, order: tuple[str, ...]) -> None:
@@ -195,24 +210,25 @@ def _format_see(see: See, atoms: list[str], out: list[str]) -> str:
     for kind in layout:
         if kind == SEE_LINE:
             begin, end = next(lines)
-            items.append(_LINE(*begin, *end))
+            items.append(LINE % (*begin, *end))
         elif kind == SEE_OBJECT:
             visible = next(objects)
-            items.append(_OBJECT(*visible))
+            items.append(OBJECT % visible)
             atoms.append(visible.name)
         elif kind == SEE_PLAYER:
             player = next(players)
-            unum = "" if player.unum is None else f" (id {player.unum})"
-            parts = "".join([_PART(part, *polar) for part, polar in player.parts.items()])
-            items.append(f"(P (team {player.team}){unum}{parts})")
+            unum = "" if player.unum is None else PLAYER_ID % player.unum
+            parts = "".join([PART % (part, *polar) for part, polar in player.parts.items()])
+            items.append(f"{PLAYER_OPEN % player.team}{unum}{parts}{PLAYER_CLOSE}")
             atoms.append(player.team)
             atoms.extend(player.parts)
         else:
-            items.append(_MYPOS(*see.my_pos_m))  # type: ignore[misc]
-    return f"(See {' '.join(items)})"
+            items.append(MYPOS % see.my_pos_m)  # type: ignore[misc]
+    return SEE_OPEN + SEE_SEPARATOR.join(items) + SEE_CLOSE
 
 
-def _format_hear(hear: Hear, atoms: list[str]) -> str:
+def hear_text(hear: Hear, atoms: list[str]) -> str:
+    """``(hear ...)`` of one message; its team and text are appended to ``atoms`` for `check_atoms`."""
     direction = "self" if hear.direction_deg is None else f"{hear.direction_deg:.2f}"
     team = "" if hear.team is None else f"{hear.team} "
     if hear.team is not None:
@@ -221,7 +237,8 @@ def _format_hear(hear: Hear, atoms: list[str]) -> str:
     return f"(hear {team}{hear.game_time_s:.2f} {direction} {hear.message})"
 
 
-def _format_game_state(state: GameState, atoms: list[str]) -> str:
+def game_state_text(state: GameState, atoms: list[str]) -> str:
+    """``(GS ...)``; its team and play mode are appended to ``atoms`` for `check_atoms`."""
     items = []
     if state.unum is not None:
         items.append(f"(unum {state.unum})")

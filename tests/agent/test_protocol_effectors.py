@@ -192,3 +192,14 @@ def test_the_joint_command_fast_path_agrees_with_the_general_reader(commands: li
     assert fast == general[:-1]
     assert all(type(a) is type(b) for a, b in zip(fast, general))
     assert format_actions(fast) == wire  # type: ignore[arg-type]
+
+
+def test_the_usual_message_is_split_without_action_objects() -> None:
+    from agent.protocol.effectors import split_joint_commands
+    assert split_joint_commands("(he1 0.5)(lle3 -1.25)(syn)") == (["he1", "lle3"], [0.5, -1.25], True)
+    assert split_joint_commands("(he1 2)") == (["he1"], [2.0], False)
+    assert split_joint_commands("(syn)") == ([], [], True)
+    assert split_joint_commands("") == ([], [], False)
+    for other in ("(syn)(he1 1)", "(he1 1)(syn)(syn)", "(he1 1) (he2 2)", "(he1 1e3)", "(he1 nan)", "(he9 1)",
+                  "(say hi)(syn)", "(he1 1", "(he1 1.)", "(he1 +1)"):
+        assert split_joint_commands(other) is None, other

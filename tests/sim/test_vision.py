@@ -1,0 +1,48 @@
+"""The vision writer: See bytes straight from the arrays equal the typed frames written by format_sense."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from agent.protocol.perceptors import Sense
+from agent.protocol.sense import format_sense
+from sim.vision import Observer, PlayerParts, SeeWriter, VisionConfig, observe, see
+from sim.world import VISIBLE_PARTS
+
+
+def _scene(seed: int, observers: int, players: int) -> tuple[list[Observer], list[PlayerParts], np.ndarray]:
+    rng = np.random.default_rng(seed)
+    teams = [PlayerParts("Left" if i % 2 else "Right", i // 2 + 1,
+                         rng.uniform((-15, -10, 0.0), (15, 10, 0.6), (5, 3)), VISIBLE_PARTS) for i in range(players)]
+    cams = []
+    for k in range(observers):
+        yaw, pitch = rng.uniform(-np.pi, np.pi), rng.uniform(-0.5, 0.5)
+        cz, sz, cp, sp = np.cos(yaw), np.sin(yaw), np.cos(pitch), np.sin(pitch)
+        rotation = np.array([[cz, -sz, 0], [sz, cz, 0], [0, 0, 1.0]]) @ np.array([[1, 0, 0], [0, cp, -sp], [0, sp, cp]])
+        # An observer stands at one of the players' heads, so it sees its own parts as the server does.
+        position = teams[k].parts_m[0] if k < players else rng.uniform((-15, -10, 0.4), (15, 10, 0.6))
+        cams.append(Observer(position, rotation, rng.uniform(-0.005, 0.005, 3), "Left", k + 1))
+    return cams, teams, rng.uniform((-15, -10, 0.042), (15, 10, 0.042))
+
+
+@pytest.mark.parametrize("seed, observers, players", [(0, 1, 0), (1, 1, 1), (2, 7, 22), (3, 3, 5), (4, 0, 3)])
+@pytest.mark.parametrize("config", [VisionConfig(), VisionConfig(noise=False, calibration=False, lines=False)])
+def test_written_see_equals_the_typed_frames(seed: int, observers: int, players: int, config: VisionConfig) -> None:
+    cams, teams, ball = _scene(seed, observers, players)
+    typed = see(cams, ball, teams, np.random.default_rng(seed), config)
+    if not cams:
+        assert typed == []
+        return
+    sighting = observe(np.stack([c.position_m for c in cams]), np.stack([c.rotation for c in cams]),
+                       np.stack([c.calibration_m for c in cams]), ball,
+                       np.vstack([t.parts_m for t in teams]) if teams else np.zeros((0, 3)),
+                       np.random.default_rng(seed), config)
+    writer = SeeWriter(VISIBLE_PARTS)
+    written = writer.frames(sighting, tuple((t.team, t.unum) for t in teams))
+    assert len(written) == len(typed)
+    for frame, data in zip(typed, written):
+        expected = format_sense(Sense(None, None, None, None, {}, see=frame))
+        assert data == expected
+    # The item table is cached per set of players: a second cycle gives the same bytes.
+    assert writer.frames(sighting, tuple((t.team, t.unum) for t in teams)) == written
