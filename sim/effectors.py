@@ -66,6 +66,13 @@ class MotorBank:
         self.re_solves = 0
         self.steps = 0
         self._diagonal: np.ndarray | None = None
+        # Per-step constants, rebuilt by `bind_model` (never changed in place: `gain`/`bias` may share them).
+        self._timestep_s = params.timestep_s
+        self._stiff = np.zeros(0)          # every gain at kv
+        self._no_bias = np.zeros(0)
+        self._held_limit = np.zeros(0)     # 80 % of the bound: a saturated motor stays saturated above it
+        self._check_limit = np.zeros(0)    # the bound with the re-solve tolerance
+        self._damping_written: np.ndarray | None = None   # the gains last written to the model
 
     # ---- robots --------------------------------------------------------------------------------------
     def add_robot(self, key: int, joints: tuple[JointSpec, ...]) -> None:
@@ -150,6 +157,12 @@ class MotorBank:
     def bind_model(self, model: mujoco.MjModel) -> None:
         """Cache model-dependent addresses (after every recompile)."""
         self._diagonal = model.M_rowadr[self.dof] + model.M_rownnz[self.dof] - 1  # CSR rows end at the diagonal
+        self._timestep_s = model.opt.timestep
+        self._stiff = np.full(self.target.size, self.params.motor_kv)
+        self._no_bias = np.zeros(self.target.size)
+        self._held_limit = 0.8 * self.max_torque
+        self._check_limit = self.max_torque * (1.0 + self.params.motor_torque_tolerance)
+        self._damping_written = None   # a recompiled model has the spec's damping
 
     def predict(self, model: mujoco.MjModel, data: mujoco.MjData) -> None:
         """Choose each motor's servo gain for the coming step and write damping and forces.
@@ -170,19 +183,19 @@ class MotorBank:
         """
         if self.target.size == 0:
             return
-        h = model.opt.timestep
+        h = self._timestep_s
         kv, limit = self.params.motor_kv, self.max_torque
         velocity = data.qvel[self.dof]
         inertia = np.maximum(data.M[self._diagonal], 1e-9)
         load = self.applied - inertia * (velocity - self.start_velocity) / h
         self.start_velocity = velocity
         error = self.target - velocity
-        self.bias = np.zeros(error.size)
+        self.bias = self._no_bias
         needed = load + inertia * error / h
         was_capped = self.gain < kv
-        capped = np.abs(needed) > np.where(was_capped, 0.8 * limit, limit)
-        if not capped.any():
-            self.gain = np.full(error.size, kv)
+        capped = np.abs(needed) > np.where(was_capped, self._held_limit, limit)
+        if not np.count_nonzero(capped):
+            self.gain = self._stiff
         else:
             free_motion = np.abs(error - h * (np.sign(needed) * limit - load) / inertia)
             remaining = np.where(was_capped, np.abs(error), free_motion)
@@ -190,7 +203,9 @@ class MotorBank:
         self._write(model, data)
 
     def _write(self, model: mujoco.MjModel, data: mujoco.MjData) -> None:
-        model.dof_damping[self.dof] = self.gain
+        if self.gain is not self._damping_written:   # all stiff again: the model holds these gains already
+            model.dof_damping[self.dof] = self.gain
+            self._damping_written = self.gain
         data.qfrc_applied[self.dof] = self.gain * self.target + self.bias
 
     def check(self, model: mujoco.MjModel, data: mujoco.MjData, final: bool = False) -> bool:
@@ -209,8 +224,8 @@ class MotorBank:
         if final:
             return False
         limit = self.max_torque
-        over = np.abs(torque) > limit * (1.0 + self.params.motor_torque_tolerance)
-        if not over.any():
+        over = np.abs(torque) > self._check_limit
+        if not np.count_nonzero(over):
             return False
         # Torque pushing a joint into its stop is absorbed by the stop (both act on the same two bodies),
         # so it changes nothing else; such joints get the lower gain from the next step on, no re-solve.

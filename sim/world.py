@@ -107,6 +107,8 @@ class World:
         self._touching_pairs: list[tuple[tuple[str, int], tuple[str, int]]] = []
         self.layout_version = 0
         """Counts recompiles: cached model addresses elsewhere are stale when it changes."""
+        self._team_version = 0   # counts team changes (see `robots`)
+        self._team_rows: tuple[object, ...] = (None,)
         self._reindex()
         mujoco.mj_forward(self.model, self.data)
 
@@ -269,6 +271,7 @@ class World:
         self.sensor_body = np.array(sensor_bodies, dtype=np.intp)
         self._sensor_data = np.array(sensor_addresses, dtype=np.intp)[:, None] + np.arange(7)
         self.frp_active = np.zeros(len(sensor_geoms), dtype=bool)
+        self._no_foot_contact = self.frp_active
         self.frp_point = np.zeros((len(sensor_geoms), 3))
         self.frp_force = np.zeros((len(sensor_geoms), 3))
         self.root_qadr = np.array([r.root_qadr for r in self.by_key.values()], dtype=np.intp)
@@ -328,6 +331,7 @@ class World:
         """Give a robot its side ("left"/"right") and number after init (None: no team, a ghost)."""
         robot = self.by_key[key]
         robot.side, robot.unum = side, unum
+        self._team_version += 1
         self._apply_collision_bits(robot)
 
     # ---- poses ---------------------------------------------------------------------------------------
@@ -393,9 +397,10 @@ class World:
                     break
                 motors.re_solves += 1
                 _restore_state(d, saved)
-            self._ball_rebound(ball_velocity)
+            contacts = self._contact_table()
+            self._ball_rebound(ball_velocity, contacts)
         self.time_s += self.params.cycle_s
-        self._contacts()        # from the step's contacts, with the poses they were found at
+        self._contacts(contacts)  # from the step's contacts, with the poses they were found at
         mujoco.mj_kinematics(m, d)
         self._poses_stale = False
 
@@ -406,19 +411,35 @@ class World:
             mujoco.mj_kinematics(self.model, self.data)
             self._poses_stale = False
 
-    def _ball_rebound(self, velocity_before: np.ndarray) -> None:
-        """ODE-style bounce of the ball (see `sim.physics_params`): restitution above the bounce speed."""
-        d, m = self.data, self.model
+    def _contact_table(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None:
+        """The last step's contacts for the rebound and the referee, computed once: geoms (n, 2), the robot
+        (row in `order`) owning each geom or -1 (n, 2), rows touching the ball (n,), rows where a robot
+        touches the ball (n,); None without contacts."""
+        d = self.data
         if d.ncon == 0:
-            return
+            return None
         geoms = d.contact.geom
-        hits = np.nonzero((geoms == self.ball_geom).any(axis=1))[0]
-        if hits.size == 0:
+        owner = self.geom_robot[geoms]
+        ball = geoms == self.ball_geom
+        ball_rows = ball[:, 0] | ball[:, 1]
+        # Only robots and the ball have bodies of their own, so a ball contact with a robot is one whose
+        # other geom belongs to a robot.
+        return geoms, owner, ball_rows, ball_rows & ((owner[:, 0] >= 0) | (owner[:, 1] >= 0))
+
+    def _ball_rebound(self, velocity_before: np.ndarray,
+                      contacts: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None) -> None:
+        """ODE-style bounce of the ball (see `sim.physics_params`): restitution above the bounce speed."""
+        if contacts is None:
+            return
+        geoms, _, ball_rows, robot_rows = contacts
+        if not np.count_nonzero(ball_rows):
             return
         # A ball slower than the bounce speed against static geometry cannot bounce: the usual resting case.
         slow = float(velocity_before @ velocity_before) <= self.params.ball_min_bounce_speed_m_s ** 2
-        if slow and not m.geom_bodyid[geoms[hits]].all(axis=1).any():
+        if slow and not np.count_nonzero(robot_rows):
             return
+        d, m = self.data, self.model
+        hits = np.flatnonzero(ball_rows)
         for i in hits.tolist():
             g1, g2 = int(geoms[i, 0]), int(geoms[i, 1])
             normal = d.contact.frame[i, :3]
@@ -443,25 +464,23 @@ class World:
         origin = d.subtree_com[self.model.body_rootid[body]]
         return lin + np.cross(rot, point - origin)
 
-    def _contacts(self) -> None:
+    def _contacts(self, contacts: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None) -> None:
         """Foot force sensors, ball touchers and robot pairs in contact, from the last step's contacts."""
-        d = self.data
         self._ball_touchers = []
         self._touching_pairs = []
-        self.frp_active = np.zeros(self.sensor_geom.size, dtype=bool)
-        if d.ncon == 0 or not self.by_key:
+        self.frp_active = self._no_foot_contact
+        if contacts is None or not self.by_key:
             return
         self._foot_sensors()
-        geoms = d.contact.geom
-        owner = self.geom_robot[geoms]                      # (n, 2): robot index or -1
+        _, owner, _, robot_rows = contacts
         robots = list(self.by_key.values())
-        ball_rows = (geoms == self.ball_geom).any(axis=1) & (owner.max(axis=1) >= 0)
-        if ball_rows.any():
-            found = {(robots[r].side, robots[r].unum) for r in owner[ball_rows].max(axis=1).tolist()
+        if np.count_nonzero(robot_rows):
+            found = {(robots[r].side, robots[r].unum) for r in owner[robot_rows].max(axis=1).tolist()
                      if robots[r].side is not None}
             self._ball_touchers = sorted(found)  # type: ignore[arg-type]
-        pair_rows = (owner.min(axis=1) >= 0) & (owner[:, 0] != owner[:, 1])
-        if pair_rows.any():
+        first, second = owner[:, 0], owner[:, 1]
+        pair_rows = (first >= 0) & (second >= 0) & (first != second)
+        if np.count_nonzero(pair_rows):
             found = set()
             for a, b in owner[pair_rows].tolist():
                 ra, rb = robots[a], robots[b]
@@ -481,13 +500,14 @@ class World:
         values = d.sensordata[self._sensor_data]              # (S, 7): found, force (on the ground), centroid
         force = -values[:, 1:4]                                 # the ground's force on the foot
         active = (values[:, 0] > 0) & ((force * force).sum(axis=1) > 1e-18)
-        if not active.any():
+        if not np.count_nonzero(active):
             self.frp_active = active
             return
         bodies = self.sensor_body
         rotation = d.xmat[bodies].reshape(-1, 3, 3)
-        self.frp_point = np.einsum("sji,sj->si", rotation, values[:, 4:7] - d.xpos[bodies])
-        self.frp_force = np.einsum("sji,sj->si", rotation, force)
+        # Rᵀ v per sensor as a row vector times R (the same sums as the einsum "sji,sj->si", cheaper).
+        self.frp_point = ((values[:, 4:7] - d.xpos[bodies])[:, None, :] @ rotation)[:, 0]
+        self.frp_force = (force[:, None, :] @ rotation)[:, 0]
         self.frp_active = active
 
     # ---- sensor readings ------------------------------------------------------------------------------
@@ -544,11 +564,11 @@ class World:
     # ---- WorldView -----------------------------------------------------------------------------------
     def ball_position(self) -> tuple[float, float, float]:
         a = self.ball_qadr
-        return tuple(float(x) for x in self.data.qpos[a:a + 3])  # type: ignore[return-value]
+        return tuple(self.data.qpos[a:a + 3].tolist())  # type: ignore[return-value]
 
     def ball_velocity(self) -> tuple[float, float, float]:
         a = self.ball_dof
-        return tuple(float(x) for x in self.data.qvel[a:a + 3])  # type: ignore[return-value]
+        return tuple(self.data.qvel[a:a + 3].tolist())  # type: ignore[return-value]
 
     def set_ball(self, position_m: tuple[float, float, float],
                  velocity_m_s: tuple[float, float, float] = (0.0, 0.0, 0.0)) -> None:
@@ -561,19 +581,24 @@ class World:
 
     def robots(self) -> list[RobotState]:
         """Robots with a team, for the referee (connection order)."""
-        rows = [i for i, robot in enumerate(self.by_key.values()) if robot.side is not None]
-        if not rows:
+        version = (self.layout_version, self._team_version)
+        if self._team_rows[0] != version:   # gather indices of the robots with a team, kept until one changes
+            members = [(row, robot) for row, robot in enumerate(self.by_key.values()) if robot.side is not None]
+            rows = [row for row, _ in members]
+            self._team_rows = (version, [robot for _, robot in members], self._root_pos[rows].ravel(),
+                               self._root_lin[rows].ravel(), self._torso_bodies[rows])
+        _, members, position_index, velocity_index, torso = self._team_rows
+        if not members:
             return []
-        robots = list(self.by_key.values())
-        q, v = self.data.qpos, self.data.qvel
-        rotation = self.data.xmat[self._torso_bodies[rows]].reshape(-1, 3, 3)
-        position = q[self._root_pos[rows]].tolist()
-        velocity = v[self._root_lin[rows]].tolist()
-        up_z = rotation[:, 2, 2].tolist()
-        heading = np.degrees(np.arctan2(rotation[:, 1, 1], rotation[:, 0, 1])).tolist()
-        return [RobotState(robots[r].side, robots[r].unum, robots[r].robot_type,  # type: ignore[arg-type]
-                           tuple(position[i]), tuple(velocity[i]), up_z[i], heading[i])  # type: ignore[arg-type]
-                for i, r in enumerate(rows)]
+        rotation = self.data.xmat[torso]                          # row-major 3x3 per robot
+        position = self.data.qpos[position_index].tolist()
+        velocity = self.data.qvel[velocity_index].tolist()
+        up_z = rotation[:, 8].tolist()
+        heading = np.degrees(np.arctan2(rotation[:, 4], rotation[:, 1])).tolist()
+        return [RobotState(robot.side, robot.unum, robot.robot_type,  # type: ignore[arg-type]
+                           tuple(position[3 * i:3 * i + 3]), tuple(velocity[3 * i:3 * i + 3]),  # type: ignore[arg-type]
+                           up_z[i], heading[i])
+                for i, robot in enumerate(members)]
 
     def ball_pose(self) -> tuple[tuple[float, float, float], tuple[float, ...]]:
         """Ball centre [m] and row-major 3x3 rotation (for monitors: `sim.monitor.SceneSource`)."""

@@ -43,6 +43,9 @@ class FoulTracker:
     def __init__(self, config: RefereeConfig) -> None:
         self.config = config
         self.players: dict[Key, PlayerCounters] = {}
+        # Only `update` changes the counters `reset_player` sets, so while the game stays paused one reset
+        # holds: `reset_all` then skips the work (it runs every paused cycle).
+        self._all_reset = False
 
     def counters(self, key: Key) -> PlayerCounters:
         if key not in self.players:
@@ -67,8 +70,11 @@ class FoulTracker:
         p.charging_time = round(c.charging_collision_min_time_s / c.cycle_s)
 
     def reset_all(self) -> None:
+        if self._all_reset:
+            return
         for key in self.players:
             self.reset_player(key)
+        self._all_reset = True
 
     def note_moved(self, team: str, unum: int) -> None:
         self.counters((team, unum)).since_moved = 0
@@ -92,6 +98,7 @@ class FoulTracker:
                ball_touchers: list[Key], touching_pairs: list[tuple[Key, Key]], placer: Placer) -> list[
                    tuple[FoulType, str, int]]:
         """One cycle of the automatic referee; returns (type, team, unum) of each enforced foul."""
+        self._all_reset = False
         states = {(r.team, r.unum): r for r in robots}
         for key, robot in states.items():
             self._process_state(key, robot)

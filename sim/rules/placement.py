@@ -42,8 +42,16 @@ class Placer:
         self.on_move = on_move
         self.pos: dict[Key, tuple[float, float]] = {(r.team, r.unum): (r.torso_pos_m[0], r.torso_pos_m[1])
                                                     for r in robots}
-        self.inside_own_area: set[Key] = {key for key, (x, y) in self.pos.items()
-                                          if in_box(x, y, config.penalty_area(key[0]))}
+        self._inside_own_area: set[Key] | None = None
+
+    def inside_own_area(self) -> set[Key]:
+        """Players inside their own penalty area at the start of the cycle (worked out on the first move,
+        before it changes a position: most cycles move nobody)."""
+        if self._inside_own_area is None:
+            config = self.config
+            self._inside_own_area = {key for key, (x, y) in self.pos.items()
+                                     if in_box(x, y, config.penalty_area(key[0]))}
+        return self._inside_own_area
 
     # ---- queries -------------------------------------------------------------------------------------
     def team(self, side: str) -> list[Key]:
@@ -61,6 +69,7 @@ class Placer:
     def move(self, key: Key, x: float, y: float, *, safe: bool = True, avoid_ball: bool = True,
              z_m: float | None = None) -> tuple[float, float]:
         """Move a robot (upright, heading kept), first searching a free spot when ``safe``; returns the spot."""
+        self.inside_own_area()
         if safe:
             x, y = self.safe_position(key, x, y, avoid_ball)
         self.world.move_robot(key[0], key[1], x, y, None, self.config.agent_radius_m if z_m is None else z_m)
@@ -91,10 +100,14 @@ class Placer:
     def clear_box(self, box: tuple[float, float, float, float], side: str) -> None:
         """Players of ``side`` overlapping ``box`` go FreeKickMoveDist beyond its edge toward their goal."""
         dist = self.config.free_kick_move_dist_m
+        e = self.config.agent_half_extent_m
+        lo_x, hi_x = min(box[0], box[1]), max(box[0], box[1])
+        pos = self.pos
         for key in self.team(side):
-            if not _rects_overlap(box, self.rect(key)):
+            x, y = pos[key]
+            # _rects_overlap(box, self.rect(key)) inlined: this runs for every robot every paused cycle.
+            if not (lo_x <= x + e and x - e <= hi_x and box[2] <= y + e and y - e <= box[3]):
                 continue
-            x, y = self.pos[key]
             x = box[0] - dist if side == LEFT else box[1] + dist
             self.move(key, x, y)
 
@@ -189,7 +202,7 @@ class Placer:
         area = c.penalty_area(side)
         inside = sum(1 for other, (ox, oy) in self.pos.items()
                      if other[0] == side and in_box(ox, oy, area))
-        if key in self.inside_own_area or inside < c.max_players_inside_own_area:
+        if key in self.inside_own_area() or inside < c.max_players_inside_own_area:
             return spot
         pad = c.agent_radius_m
         x, y = spot
