@@ -330,7 +330,7 @@ class SimEngine:
             positions = self._bank_positions[(robot_type, start)] = {
                 effector: start + i for effector, i in _effector_index(robot_type).items()}
         try:
-            index.extend([positions[effector] for effector in values])
+            index.extend(list(map(positions.__getitem__, values)))   # all or nothing
             velocity.extend(values.values())
         except KeyError:   # an effector this robot type lacks: take the known ones, report the others
             for effector, value in values.items():

@@ -46,18 +46,27 @@ class Hearing:
 
     def __init__(self) -> None:
         self._capacity: dict[tuple[int, bool], int] = {}
+        self._full: frozenset[int] = frozenset()   # listeners whose channels are all at capacity
 
     def forget(self, key: int) -> None:
         """Drop a listener's channels (disconnect)."""
         self._capacity.pop((key, True), None)
         self._capacity.pop((key, False), None)
+        self._full = self._full - {key}
 
     def refill(self, keys: list[int]) -> None:
-        """The per-cycle +1 of every listener's two channels (capped at 2); `deliver` does it itself."""
+        """The per-cycle +1 of every listener's two channels (capped at 2); `deliver` does it itself.
+
+        Quiet cycles (no says) call it for every robot: once all channels are full it changes nothing.
+        """
+        if self._full.issuperset(keys):
+            return
         capacity = self._capacity
         for key in keys:
             for channel in ((key, True), (key, False)):
                 capacity[channel] = min(CHANNEL_CAPACITY, capacity.get(channel, CHANNEL_CAPACITY - 1) + 1)
+        self._full = frozenset(key for key in keys
+                               if capacity[(key, True)] == capacity[(key, False)] == CHANNEL_CAPACITY)
 
     def deliver(self, speakers: list[Speaker], listeners: list[Listener],
                 game_time_s: float) -> dict[int, list[Hear]]:
@@ -84,6 +93,7 @@ class Hearing:
                 if self._capacity.get(channel, 0) < CAPACITY_PER_MESSAGE:
                     continue
                 self._capacity[channel] -= CAPACITY_PER_MESSAGE
+                self._full = self._full - {listener.key}
                 if listener.side == "right":   # the right team's frame is the world point-reflected
                     dx, dy = -dx, -dy
                 direction = math.degrees(math.atan2(dy, dx))

@@ -249,7 +249,10 @@ def parse_actions(data: bytes | str) -> list[ParsedAction]:
 
 
 # The usual agent message, joint commands then (syn), in the exact spelling: cut apart without building trees.
-_JOINT_RUN = re.compile(r"(?:\((?:he[12]|[lr]ae[1-4]|[lr]le[1-7]) -?\d++(?:\.\d++)?\))*+")
+# The pattern only admits the shape; names are checked against the effector set and numbers by float().
+_JOINT_RUN = re.compile(r"(?:\([a-z1-7]++ -?[0-9.]++\))*+")
+_JOINT_EFFECTORS = frozenset(["he1", "he2"] + [f"{side}{limb}{i}" for side in "lr" for limb in ("ae", "le")
+                                               for i in range(1, 5 if limb == "ae" else 8)])
 _SYN_TEXT = "(syn)"
 _SYN = Syn()
 
@@ -273,7 +276,13 @@ def split_joint_commands(text: str) -> tuple[list[str], list[float], bool] | Non
         return [], [], syn
     # "(he1 0.5)(he2 -1)" -> "he1 0.5 he2 -1": names and values alternate.
     tokens = body[1:-1].replace(")(", " ").split(" ")
-    return tokens[0::2], list(map(float, tokens[1::2])), syn
+    names = tokens[0::2]
+    if not _JOINT_EFFECTORS.issuperset(names):
+        return None
+    try:
+        return names, list(map(float, tokens[1::2])), syn
+    except ValueError:   # "1.2.3": the general path reports it
+        return None
 
 
 def _new_joint(effector: str, velocity_rad_s: float) -> JointVelocity:

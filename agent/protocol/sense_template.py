@@ -146,7 +146,8 @@ class SenseTemplate:
         template, pick = shape
         return template % pick([time, game_state, see, *hears, *values])
 
-    def _build(self, frp_mask: int, has_see: bool, hear_count: int) -> tuple[bytes, itemgetter]:  # type: ignore[type-arg]
+    def _build(self, frp_mask: int, has_see: bool,
+               hear_count: int) -> tuple[bytes, itemgetter]:  # type: ignore[type-arg]
         """The template of one shape and the picker of its values from the pool `format` builds."""
         active = [name for i, name in enumerate(self.foot_sensors) if frp_mask >> i & 1]
         sample = Sense(TimePerceptor(0.0), GameState(None, None, 0, 0, 0.0, "BeforeKickOff"),

@@ -201,5 +201,8 @@ def test_the_usual_message_is_split_without_action_objects() -> None:
     assert split_joint_commands("(syn)") == ([], [], True)
     assert split_joint_commands("") == ([], [], False)
     for other in ("(syn)(he1 1)", "(he1 1)(syn)(syn)", "(he1 1) (he2 2)", "(he1 1e3)", "(he1 nan)", "(he9 1)",
-                  "(say hi)(syn)", "(he1 1", "(he1 1.)", "(he1 +1)"):
+                  "(lae7 1)", "(say hi)(syn)", "(he1 1", "(he1 1.2.3)", "(he1 .)", "(he1 -)", "(he1 +1)"):
         assert split_joint_commands(other) is None, other
+    # What the split accepts, the general reader reads alike (a (pass) sends a message down that path).
+    for usual in ("(he1 1.)(syn)", "(lle7 -.5)", "(rae4 007)(he2 -0)"):
+        assert parse_actions(usual) == parse_actions(usual + "(pass)")[:-1], usual

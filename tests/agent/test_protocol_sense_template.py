@@ -79,7 +79,7 @@ def test_real_sample_messages_are_written_back() -> None:
     checked = 0
     for message in received():
         sense = parse_sense(message)
-        if list(sense.joints) != JOINTS or sense.agent_state is not None or sense.see is not None and sense.see.my_pos_m:
+        if list(sense.joints) != JOINTS or sense.agent_state is not None or (sense.see and sense.see.my_pos_m):
             continue
         if format_sense(Sense(*[getattr(sense, f) for f in ("time", "game_state", "gyro", "acc", "joints", "frp",
                                                               "hears", "see")])) != message:

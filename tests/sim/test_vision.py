@@ -46,3 +46,21 @@ def test_written_see_equals_the_typed_frames(seed: int, observers: int, players:
         assert data == expected
     # The item table is cached per set of players: a second cycle gives the same bytes.
     assert writer.frames(sighting, tuple((t.team, t.unum) for t in teams)) == written
+
+
+def test_the_field_of_view_prefilter_changes_nothing(monkeypatch: pytest.MonkeyPatch) -> None:
+    import sim.vision
+    for seed in range(6):
+        cams, teams, ball = _scene(seed, 7, 22)
+        # Points right at the edge of the view cone and behind the camera are the prefilter's hard cases.
+        edge = [c.position_m + c.rotation @ np.array([np.tan(np.radians(60.0)) * 3.0, 3.0, z]) for c in cams[:3]
+                for z in (-5.2, 0.0, 5.2)]
+        teams[0] = type(teams[0])(teams[0].team, teams[0].unum, np.array(edge[:5]), teams[0].part_names)
+        arrays = (np.stack([c.position_m for c in cams]), np.stack([c.rotation for c in cams]),
+                  np.stack([c.calibration_m for c in cams]), ball, np.vstack([t.parts_m for t in teams]))
+        filtered = observe(*arrays, np.random.default_rng(seed))
+        monkeypatch.setattr(sim.vision, "_PREFILTER_MIN_POINTS", 10 ** 9)
+        plain = observe(*arrays, np.random.default_rng(seed))
+        monkeypatch.undo()
+        for field in ("seen_k", "seen_p", "values", "line_k", "line_values", "object_rows", "line_rows"):
+            assert np.array_equal(getattr(filtered, field), getattr(plain, field)), field
