@@ -31,6 +31,7 @@ from agent.protocol.sense_template import SenseTemplate, game_state_bytes, hear_
 from sim.hearing import Hearing, Listener, Speaker
 from sim.perceptors import wire_joint_order
 from sim.physics_params import PhysicsParams
+from sim.rules.self_collision import BodyPoseArrays
 from sim.vision import CALIBRATION_ERROR_M, Observer, PlayerParts, SeeWriter, VisionConfig, observe, see
 from sim.world import VISIBLE_PARTS, World
 
@@ -134,6 +135,10 @@ class SimEngine:
         if referee is None:
             from sim.referee import Referee
             referee = Referee(seed=seed)
+        if getattr(referee, "body_pose_source", False) is None:
+            # The self-collision rule reads every robot's body poses each cycle: hand it views of MuJoCo's
+            # pose arrays (no copies), so the rule is on in-process as under the TCP server.
+            referee.body_pose_source = self.robot_body_poses
         self.seed = seed
         self.sync = sync
         self.referee = referee
@@ -435,6 +440,15 @@ class SimEngine:
                                       link.calibration_m, link.team or "", link.unum or 0))
         frames = see(observers, np.array(world.ball_position()), players, self.rng, self.vision)
         return {link.key: frame for link, frame in zip(seeing, frames)}
+
+    def robot_body_poses(self) -> list[tuple[str | None, int, int, BodyPoseArrays]]:
+        """Per robot in connection order: (side or None, unum or 0, robot type, body name -> (centre [m],
+        row-major 3x3 rotation)), as `sim.world.World.robot_body_poses` but over views of the world's pose
+        arrays, which the self-collision rule gathers for all robots at once."""
+        data = self.world.data
+        positions, rotations = data.xpos, data.xmat   # one view each, shared by every robot
+        return [(robot.side, robot.unum or 0, robot.robot_type, BodyPoseArrays(robot.body_rows, positions, rotations))
+                for robot in self.world.by_key.values()]
 
     # ---- errors --------------------------------------------------------------------------------------
     def _error(self, link: AgentLink | None, text: str) -> None:

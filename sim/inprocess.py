@@ -13,8 +13,7 @@ import logging
 from dataclasses import dataclass, field
 from typing import Protocol
 
-from agent.protocol.errors import ProtocolError
-from sim.engine import SimEngine
+from sim.engine import LOGGED_ERRORS_PER_AGENT, SimEngine
 
 logger = logging.getLogger(__name__)
 
@@ -32,11 +31,13 @@ class HostedAgent(Protocol):
 
 @dataclass
 class HostStats:
-    """Counts of a run: cycles stepped, sense messages delivered, agent steps that raised."""
+    """Counts of a run: cycles stepped, sense messages delivered, agent steps that raised (in all and per agent
+    id)."""
 
     cycles: int = 0
     messages: int = 0
     agent_errors: int = 0
+    errors_by_agent: dict[int, int] = field(default_factory=dict)
     transcript: list[tuple[int, int, bytes]] = field(default_factory=list)
 
 
@@ -67,7 +68,12 @@ class InProcessHost:
         self.engine.disconnect(agent_id)
 
     def run(self, cycles: int) -> HostStats:
-        """Step the engine ``cycles`` times; each agent answers each sense message before the next step."""
+        """Step the engine ``cycles`` times; each agent answers each sense message before the next step.
+
+        An agent whose step raises (any Exception: a bad sense message, a bug in a skill) loses that cycle
+        only: the host logs it with the agent id and the traceback, counts it in `stats`, and answers
+        ``(syn)`` for it, as a server survives a broken client. The match goes on.
+        """
         engine, stats = self.engine, self.stats
         for _ in range(cycles):
             out = engine.step()
@@ -81,9 +87,17 @@ class InProcessHost:
                     stats.transcript.append((engine.cycle, agent_id, payload))
                 try:
                     reply = agent.step(payload)
-                except ProtocolError as error:
-                    stats.agent_errors += 1
-                    logger.warning("agent %d could not read its sense message: %s", agent_id, error)
+                except Exception as error:  # noqa: BLE001 - the host's edge: one agent's failure costs its cycle only
                     reply = SYN_ONLY
+                    self._agent_failed(agent_id, error)
                 engine.receive(agent_id, reply)
         return stats
+
+    def _agent_failed(self, agent_id: int, error: Exception) -> None:
+        stats = self.stats
+        stats.agent_errors += 1
+        count = stats.errors_by_agent[agent_id] = stats.errors_by_agent.get(agent_id, 0) + 1
+        # A broken agent fails every cycle: the first failures with their traceback, the rest quietly.
+        level = logging.WARNING if count <= LOGGED_ERRORS_PER_AGENT else logging.DEBUG
+        logger.log(level, "agent %d: step raised %s (cycle %d answered with (syn)): %s", agent_id,
+                   type(error).__name__, self.engine.cycle, error, exc_info=count <= LOGGED_ERRORS_PER_AGENT)

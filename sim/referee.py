@@ -124,8 +124,8 @@ class Referee:
         self.roster = Roster(self.config)
         self.pass_mode = PassModeTracker(self.config)
         self.fouls_tracker = FoulTracker(self.config)
-        # Body poses for the self-collision rule when the world has no ``robot_body_poses()`` of its own
-        # (e.g. ``sim.monitor.MujocoWorldScene(world).robot_body_poses``); None and no world method: rule off.
+        # Body poses for the self-collision rule (sim.engine.SimEngine sets its cheap array views here); when
+        # None, the world's own ``robot_body_poses()`` if it has one, else the rule is off.
         self.body_pose_source: Callable[[], Sequence[tuple[str | None, int, int, Mapping[str, object]]]] | None = None
         self.self_collisions = SelfCollisionRule(self.config.self_collision_tolerance_m,
                                                  self.config.self_collision_joint_frozen_time_s,
@@ -569,9 +569,13 @@ class Referee:
             logger.info("foul %s by %s %d at t=%.2f", foul_type.name, team, unum, self.game_time_s)
 
     def _check_self_collisions(self, world: WorldView) -> list[tuple[FoulType, str, int]]:
-        """Self-collision (type 7): needs body poses, from the world's ``robot_body_poses()`` (see
-        sim.monitor.SceneSource) or `body_pose_source`; without them the rule is skipped."""
-        poses_of = getattr(world, "robot_body_poses", None) or self.body_pose_source
+        """Self-collision (type 7): needs body poses, from `body_pose_source` or else the world's
+        ``robot_body_poses()`` (see sim.monitor.SceneSource); without them the rule is skipped.
+
+        Each call to ``world.freeze_joints`` is one foul: the joints stay frozen for the frozen time by the
+        world's motors, and `SelfCollisionRule` names a joint again only after frozen + thaw time.
+        """
+        poses_of = self.body_pose_source or getattr(world, "robot_body_poses", None)
         if not self.config.foul_on_self_collisions or poses_of is None:
             return []
         robots = [(side, unum, robot_type, poses) for side, unum, robot_type, poses in poses_of()

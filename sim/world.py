@@ -78,6 +78,7 @@ class Robot:
     foot_bodies: dict[str, int] = field(default_factory=dict)
     body_names: tuple[str, ...] = ()
     body_ids: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.intp))
+    body_rows: dict[str, int] = field(default_factory=dict)
     sensor_slots: dict[str, int] = field(default_factory=dict)
     geoms: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.intp))
     velocity_sample: np.ndarray = field(default_factory=lambda: np.zeros(3))
@@ -238,6 +239,7 @@ class World:
             robot.part_bodies = np.array([m.body(prefix + part).id for part in VISIBLE_PARTS], dtype=np.intp)
             robot.body_names = tuple(b.name for b in robot.spec.bodies)
             robot.body_ids = np.array([m.body(prefix + name).id for name in robot.body_names], dtype=np.intp)
+            robot.body_rows = dict(zip(robot.body_names, robot.body_ids.tolist()))
             bodies = set(robot.body_ids.tolist())
             robot.geoms = np.array([g for g in range(m.ngeom) if m.geom_bodyid[g] in bodies], dtype=np.intp)
             self.geom_robot[robot.geoms] = index

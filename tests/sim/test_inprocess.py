@@ -39,3 +39,50 @@ def test_the_real_agent_runs_in_process() -> None:
     assert stats.agent_errors == 0 and stats.messages == 58
     assert host.engine.agents[key].unum == 3 and host.engine.errors[key] == 0
     assert agent.world.game.unum == 3
+
+
+class _Failing(Scripted):
+    """Raises in its step at the given message indices (a bug in an agent), else behaves as Scripted."""
+
+    def __init__(self, failing: set[int], error: type[Exception], replies: dict[int, bytes]) -> None:
+        super().__init__(replies)
+        self.failing = failing
+        self.error = error
+
+    def step(self, sense: bytes) -> bytes:
+        reply = super().step(sense)
+        if len(self.received) - 1 in self.failing:
+            raise self.error(f"boom at message {len(self.received) - 1}")
+        return reply
+
+
+def test_an_agent_that_raises_loses_that_cycle_only(caplog) -> None:  # noqa: ANN001 - pytest fixture
+    import logging
+    host = InProcessHost(SimEngine(seed=2))
+    broken = _Failing({3, 4, 9}, ZeroDivisionError, {0: b"(init (unum 0)(teamname A))(syn)", 4: b"(he1 1)(syn)"})
+    steady = Scripted({0: b"(init (unum 0)(teamname B))(syn)"})
+    broken_id, steady_id = host.add(broken), host.add(steady)
+    with caplog.at_level(logging.WARNING, logger="sim.inprocess"):
+        stats = host.run(20)
+    # Every message reached both agents; the three failures were counted, logged with the id, answered (syn).
+    assert len(broken.received) == len(steady.received) == 18
+    assert stats.agent_errors == 3 and stats.errors_by_agent == {broken_id: 3}
+    failures = [r for r in caplog.records if r.name == "sim.inprocess"]
+    assert len(failures) == 3 and all(f"agent {broken_id}:" in r.getMessage() for r in failures)
+    assert all("ZeroDivisionError" in r.getMessage() and r.exc_info for r in failures)
+    # The (syn) answers kept it in sync and its joints untouched (its he1 command was lost with message 4).
+    assert host.engine.errors[broken_id] == 0 and host.engine.ready() is True
+    assert host.engine.agents[broken_id].team == "A" and host.engine.agents[steady_id].team == "B"
+    assert abs(host.engine.world.motors.targets(broken_id)[0]) < 1e-12
+
+
+def test_a_broken_agent_is_logged_quietly_after_the_first_failures(caplog) -> None:  # noqa: ANN001
+    import logging
+
+    from sim.engine import LOGGED_ERRORS_PER_AGENT
+    host = InProcessHost(SimEngine(seed=2))
+    host.add(_Failing(set(range(1000)), RuntimeError, {}))
+    with caplog.at_level(logging.WARNING, logger="sim.inprocess"):
+        stats = host.run(40)
+    assert stats.agent_errors == 38
+    assert len([r for r in caplog.records if r.name == "sim.inprocess"]) == LOGGED_ERRORS_PER_AGENT

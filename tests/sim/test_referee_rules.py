@@ -411,10 +411,12 @@ def test_self_collision_freezes_joints_once_per_immunity() -> None:
     run(referee, world, 1)
     sc = [f for f in referee.fouls if f.type == FoulType.SELF_COLLISION]
     assert len(sc) == 1 and world.frozen and world.frozen[0][2] == ["lae1", "lae2", "lae3", "lae4"]
-    run(referee, world, 100)  # within frozen + thaw (3 s): no new foul
+    run(referee, world, 100)  # within frozen + thaw (3 s): no new foul, and no new freeze
     assert len([f for f in referee.fouls if f.type == FoulType.SELF_COLLISION]) == 1
+    assert len(world.frozen) == 1
     run(referee, world, 60)
     assert len([f for f in referee.fouls if f.type == FoulType.SELF_COLLISION]) == 2
+    assert len(world.frozen) == 2
 
 
 def test_parallel_boxes_never_report_a_self_collision() -> None:

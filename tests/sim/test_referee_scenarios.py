@@ -7,6 +7,7 @@ import pytest
 
 from sim.engine import SimEngine
 from sim.monitor import MujocoWorldScene
+from sim.rules.params import FoulType
 
 
 def join(engine: SimEngine, team: str, unum: int, beam: tuple[float, float, float]) -> int:
@@ -85,3 +86,37 @@ def test_robots_standing_still_commit_no_fouls() -> None:
         engine.step()
     assert engine.referee.fouls == []
     assert all(robot.torso_pos_m[2] > 0.3 for robot in engine.world.robots())
+
+
+def test_self_collision_is_called_in_process_and_freezes_once_per_foul() -> None:
+    """The engine hands the referee its body poses (no monitor needed), and each foul freezes the joints
+    once: the motors hold them for 1 s by themselves, the rule names them again only after 3 s."""
+    import math
+
+    import mujoco
+    engine = SimEngine(seed=4)
+    join(engine, "A", 2, (-3.0, 1.0, 0.0))
+    world, referee = engine.world, engine.referee
+    freezes: list[tuple[float, list[str]]] = []
+    freeze = world.freeze_joints
+
+    def counted_freeze(team: str, unum: int, effectors: list[str]) -> None:
+        freezes.append((world.time_s, list(effectors)))
+        freeze(team, unum, effectors)
+
+    world.freeze_joints = counted_freeze  # type: ignore[method-assign]
+    # Left lower arm turned into the torso (found by sampling arm poses; a pair the server's test reports).
+    robot = world.robot_of("left", 2)
+    arm = {"lae1": -77.6, "lae2": 2.4, "lae3": 16.4, "lae4": -56.0}
+    index = {j.effector: i for i, j in enumerate(robot.spec.joints)}
+    span = world.motors.span(robot.key)
+    for effector, angle_deg in arm.items():
+        world.data.qpos[world.motors.qadr[span][index[effector]]] = math.radians(angle_deg)
+    mujoco.mj_kinematics(world.model, world.data)
+    referee.set_play_mode("PlayOn")
+    for _ in range(200):   # 4 s; the motors hold the arm where it is
+        engine.step()
+    fouls = [f for f in referee.fouls if f.type == FoulType.SELF_COLLISION]
+    assert len(fouls) == 2 and fouls[1].game_time_s - fouls[0].game_time_s > 3.0
+    assert len(freezes) == len(fouls)
+    assert all(sorted(effectors) == ["lae1", "lae2", "lae3", "lae4"] for _, effectors in freezes)
