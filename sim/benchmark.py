@@ -12,7 +12,7 @@ import math
 import time
 from dataclasses import dataclass
 
-from agent.protocol.effectors import Init, Scene, format_actions
+from agent.protocol.effectors import Init, Scene, format_actions, joint_velocity_template
 from agent.protocol.sense import parse_sense
 from kinematics.spec import EFFECTOR_NAMES
 from sim.engine import SimEngine
@@ -26,6 +26,9 @@ TEAM_TYPES = (0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 0)
 _AMPLITUDE = {"he1": 1.0, "he2": 0.3, "lae1": 0.8, "rae1": 0.8, "lae2": 0.3, "rae2": 0.3, "lae3": 0.5,
               "rae3": 0.5, "lae4": 0.4, "rae4": 0.4}
 _LEG_AMPLITUDE = 0.02
+# The whole command as one printf template (the same bytes as writing each "(name %.4f)" on its own).
+_COMMAND = joint_velocity_template(EFFECTOR_NAMES) + b"(syn)"
+_AMPLITUDES = [_AMPLITUDE.get(name, _LEG_AMPLITUDE) for name in EFFECTOR_NAMES]
 
 
 class WaveAgent:
@@ -47,10 +50,8 @@ class WaveAgent:
         self.cycles += 1
         if self.cycles == 1:
             return format_actions([Init(0, self.team)]) + b"(syn)"
-        t = self.cycles * 0.02
-        parts = [f"({name} {_AMPLITUDE.get(name, _LEG_AMPLITUDE) * math.sin(3.0 * t + self.phase + i):.4f})"
-                 for i, name in enumerate(EFFECTOR_NAMES)]
-        return ("".join(parts) + "(syn)").encode("ascii")
+        angle = 3.0 * (self.cycles * 0.02) + self.phase
+        return _COMMAND % tuple([amplitude * math.sin(angle + i) for i, amplitude in enumerate(_AMPLITUDES)])
 
 
 @dataclass(frozen=True)

@@ -20,7 +20,7 @@ from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 
 from agent.protocol.errors import ProtocolError
-from agent.protocol.numbers import format_agent_float, parse_float, parse_int
+from agent.protocol.numbers import AGENT_FLOAT_DECIMALS, format_agent_float, parse_float, parse_int
 from agent.protocol.sexpr import Atom, Node, ascii_text, read_located
 
 #: Longest say message the server passes on (longer ones are dropped silently; REFERENCE §3.8).
@@ -214,6 +214,22 @@ def format_joint_velocities(velocities_rad_s: Mapping[str, float]) -> bytes:
             raise ProtocolError(f"unknown joint effector {effector!r}", 0, effector[:24].encode())
         parts.append(f"({effector} {format_agent_float(velocity)})")
     return "".join(parts).encode("ascii")
+
+
+def joint_velocity_template(effectors: Sequence[str]) -> bytes:
+    """A printf template of a whole-body command, ``b"(he1 %.4f)(he2 %.4f)..."``, for agents that send the same
+    joints every cycle: ``template % tuple(velocities)`` writes them all in one C call.
+
+    Values get 4 fixed decimals (as `format_agent_float`, without trimming the zeros: the server reads both
+    spellings alike); keep them finite, since ``%.4f`` would write ``nan``, which the server rejects.
+
+    Raises:
+        ProtocolError: an unknown effector name.
+    """
+    for effector in effectors:
+        if JOINT_EFFECTOR.match(effector) is None:
+            raise ProtocolError(f"unknown joint effector {effector!r}", 0, effector[:24].encode())
+    return "".join(f"({effector} %.{AGENT_FLOAT_DECIMALS}f)" for effector in effectors).encode("ascii")
 
 
 def parse_actions(data: bytes | str) -> list[ParsedAction]:

@@ -47,7 +47,7 @@ __all__ = ["format_sense", "parse_sense"]
 # numbers.py accept the same tokens. Once a run of joints, objects or lines has matched, its names and
 # numbers are cut out with str/bytes operations and converted with map/zip, all in C: per-item Python work
 # is what costs on the agent's 20 ms cycle.
-_NUM = r"[-.\d]++"  # possessive: a token always ends at a space or ')', so never backtrack into it
+_NUM = r"[-.0-9]++"  # possessive: a token always ends at a space or ')', so never backtrack into it
 _ATOM = r"[!-'*-~]++"
 _F, _I, _N = rf"({_NUM})", r"(-?\d+)", rf"({_ATOM})"
 _POL_UNCAPTURED = rf"\(pol {_NUM} {_NUM} {_NUM}\)"
@@ -93,16 +93,20 @@ def parse_sense(data: bytes | str, *, fast_path: bool = True) -> Sense:
         ProtocolError: malformed input (bad byte, unbalanced list, bad number, a known predicate with the
             wrong shape, a predicate or joint given twice, NaN/Inf), with its byte offset.
     """
-    text = ascii_text(data)
     if fast_path:
-        raw = data if isinstance(data, bytes) else text.encode("ascii")
+        # No byte check first: the fast path's patterns admit only printable ASCII and spaces and must cover
+        # the whole message, so a message it accepts is clean (latin-1 decoding cannot fail or hide a byte).
+        if isinstance(data, bytes):
+            text, raw = data.decode("latin-1"), data
+        else:
+            text, raw = data, data.encode("latin-1", "replace")
         try:
             sense = _parse_fast(text, raw)
         except ValueError:  # a number float() refused
             sense = None
         if sense is not None:
             return sense
-    return parse_sense_general(text)
+    return parse_sense_general(ascii_text(data))
 
 
 def _parse_fast(text: str, raw: bytes) -> Sense | None:

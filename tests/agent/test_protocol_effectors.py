@@ -206,3 +206,15 @@ def test_the_usual_message_is_split_without_action_objects() -> None:
     # What the split accepts, the general reader reads alike (a (pass) sends a message down that path).
     for usual in ("(he1 1.)(syn)", "(lle7 -.5)", "(rae4 007)(he2 -0)"):
         assert parse_actions(usual) == parse_actions(usual + "(pass)")[:-1], usual
+
+
+def test_the_whole_body_template_writes_what_the_server_reads() -> None:
+    from agent.protocol.effectors import joint_velocity_template, split_joint_commands
+    names = ["he1", "lae3", "rle7"]
+    wire = joint_velocity_template(names) % (0.5, -1.23456, -1e-6) + b"(syn)"
+    assert wire == b"(he1 0.5000)(lae3 -1.2346)(rle7 -0.0000)(syn)"
+    assert split_joint_commands(wire.decode()) == (names, [0.5, -1.2346, -0.0], True)
+    assert parse_actions(wire) == [JointVelocity("he1", 0.5), JointVelocity("lae3", -1.2346),
+                                   JointVelocity("rle7", 0.0), Syn()]
+    with pytest.raises(ProtocolError):
+        joint_velocity_template(["he1", "hx9"])
