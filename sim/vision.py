@@ -15,6 +15,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from functools import partial
+from typing import NamedTuple
 
 import numpy as np
 
@@ -94,8 +95,20 @@ def polar(rel: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return distance, theta, phi
 
 
-@dataclass(frozen=True)
-class Sighting:
+def _polar_rows(rel: np.ndarray) -> np.ndarray:
+    """`polar` of points (n, 3) as rows (d, θ, φ) of one array: the same arithmetic, written in place."""
+    x, y, z = rel[:, 0], rel[:, 1], rel[:, 2]
+    out = np.empty(rel.shape)
+    planar = x * x + y * y
+    np.sqrt(planar + z * z, out=out[:, 0])
+    theta = np.degrees(np.arctan2(y, x)) - 90.0
+    theta[theta <= -180.0] += 360.0
+    out[:, 1] = theta
+    np.degrees(np.arctan2(z, np.sqrt(planar)), out=out[:, 2])
+    return out
+
+
+class Sighting(NamedTuple):
     """What every observer of one cycle sees, as arrays (noise applied); `see` and `SeeWriter` read it.
 
     Objects: rows (seen_k[i], seen_p[i]) of the point table (landmarks, ball, then 5 parts per player),
@@ -149,7 +162,7 @@ def observe(cams_m: np.ndarray, rotations: np.ndarray, calibration_m: np.ndarray
     else:
         line_k = np.zeros(0, dtype=np.intp)
     # One polar conversion for the objects of every observer and the clipped line ends.
-    table = np.stack(polar(flat), axis=1)
+    table = _polar_rows(flat)
     objects = table[:object_rows]
     visible = ((objects[:, 0] > MIN_DISTANCE_M) & (np.abs(objects[:, 1]) <= HALF_FOV_DEG)
                & (np.abs(objects[:, 2]) <= HALF_FOV_DEG))
@@ -265,7 +278,9 @@ def _clip_to_pyramid(segments: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     low = np.maximum(0.0, np.where(along > 0, t_cross, -np.inf).max(axis=2))    # entering a plane
     high = np.minimum(1.0, np.where(along < 0, t_cross, np.inf).min(axis=2))    # leaving a plane
     visible = (low < high) & ~((along == 0) & (at_start < 0)).any(axis=2)
-    clipped = np.stack([start + low[..., None] * direction, start + high[..., None] * direction], axis=2)
+    clipped = np.empty(segments.shape)
+    np.add(start, low[..., None] * direction, out=clipped[..., 0, :])
+    np.add(start, high[..., None] * direction, out=clipped[..., 1, :])
     return clipped, visible
 
 
