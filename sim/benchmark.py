@@ -32,12 +32,17 @@ _AMPLITUDES = [_AMPLITUDE.get(name, _LEG_AMPLITUDE) for name in EFFECTOR_NAMES]
 
 
 class WaveAgent:
-    """A benchmark agent: scene, init, then 22 joint waves per cycle; parses every sense message."""
+    """A benchmark agent: scene, init, then 22 joint waves per cycle; parses every sense message.
 
-    def __init__(self, team: str, robot_type: int, phase: float) -> None:
+    ``parse=False`` makes an agent that only counts its messages, to show the simulator's own cost (a figure
+    to read beside the real one, never instead of it).
+    """
+
+    def __init__(self, team: str, robot_type: int, phase: float, parse: bool = True) -> None:
         self.team = team
         self.robot_type = robot_type
         self.phase = phase
+        self.parse = parse
         self.cycles = 0
         self.parsed_joints = 0
 
@@ -45,8 +50,8 @@ class WaveAgent:
         return format_actions([Scene("rsg/agent/nao/nao_hetero.rsg", self.robot_type)])
 
     def step(self, sense: bytes) -> bytes:
-        parsed = parse_sense(sense)
-        self.parsed_joints += len(parsed.joints)
+        if self.parse:
+            self.parsed_joints += len(parse_sense(sense).joints)
         self.cycles += 1
         if self.cycles == 1:
             return format_actions([Init(0, self.team)]) + b"(syn)"
@@ -57,7 +62,8 @@ class WaveAgent:
 @dataclass(frozen=True)
 class BenchResult:
     """Figures of one run: simulated and wall seconds of the timed cycles, their ratio, the ratio for the time
-    inside ``mujoco.mj_step`` alone, extra motor-bound physics solves, robots lying at the end."""
+    inside ``mujoco.mj_step`` alone, extra motor-bound physics solves, robots lying at the end, and whether
+    the agents parsed their sense messages (False only for the simulator-alone figure)."""
 
     robots: int
     cycles: int
@@ -67,21 +73,24 @@ class BenchResult:
     raw_mujoco_realtime_factor: float
     physics_re_solves: int
     fallen: int
+    agents_parse: bool = True
 
     def as_dict(self) -> dict[str, float | int]:
         return dict(self.__dict__)
 
 
-def run(robots: int = 22, cycles: int = 500, warmup_cycles: int = 50, seed: int = 0) -> BenchResult:
+def run(robots: int = 22, cycles: int = 500, warmup_cycles: int = 50, seed: int = 0,
+        parse: bool = True) -> BenchResult:
     """Connect ``robots`` agents (two teams), let them settle, then time ``cycles`` cycles.
 
-    raw_mujoco_realtime_factor counts only the time inside ``mujoco.mj_step`` in the timed cycles.
+    raw_mujoco_realtime_factor counts only the time inside ``mujoco.mj_step`` in the timed cycles; with
+    ``parse=False`` the agents skip parsing (the simulator's own speed, labelled by ``agents_parse``).
     """
     engine = SimEngine(seed=seed)
     host = InProcessHost(engine)
     for i in range(robots):
         team, index = ("Left", i // 2) if i % 2 == 0 else ("Right", i // 2)
-        host.add(WaveAgent(team, TEAM_TYPES[index % len(TEAM_TYPES)], phase=0.7 * i))
+        host.add(WaveAgent(team, TEAM_TYPES[index % len(TEAM_TYPES)], phase=0.7 * i, parse=parse))
     host.run(warmup_cycles)
     world = engine.world
     world.mujoco_wall_s = 0.0
@@ -92,4 +101,5 @@ def run(robots: int = 22, cycles: int = 500, warmup_cycles: int = 50, seed: int 
     sim_seconds = cycles * world.params.cycle_s
     fallen = sum(1 for r in world.robots() if r.torso_pos_m[2] < 0.25)
     return BenchResult(robots, cycles, sim_seconds, wall, sim_seconds / wall,
-                       sim_seconds / max(world.mujoco_wall_s, 1e-9), world.motors.re_solves - re_solves, fallen)
+                       sim_seconds / max(world.mujoco_wall_s, 1e-9), world.motors.re_solves - re_solves, fallen,
+                       parse)

@@ -27,7 +27,9 @@ from agent.protocol.effectors import (Beam, Init, InvalidAction, JointVelocity, 
                                       UnknownAction, parse_actions, split_joint_commands)
 from agent.protocol.errors import ProtocolError
 from agent.protocol.perceptors import GameState, Hear
-from agent.protocol.sense_template import SenseTemplate, game_state_bytes, hear_bytes, time_bytes
+from agent.protocol.sense_template import (SPELLED_NUMBER, SenseTemplate, game_state_bytes, hear_bytes,
+                                           time_bytes)
+from sim.fixed2 import spell_fixed2
 from sim.hearing import Hearing, Listener, Speaker
 from sim.perceptors import wire_joint_order
 from sim.physics_params import PhysicsParams
@@ -371,6 +373,7 @@ class SimEngine:
         if not links:
             return {}
         values, frp_masks = world.perceptor_rows()
+        values = spell_fixed2(values).tolist()   # every float of every robot spelled at once
         sees = self._vision_bytes(links)
         referee = self.referee
         out = {}
@@ -466,12 +469,13 @@ _SENSE_TEMPLATES: dict[int, SenseTemplate] = {}
 
 def _sense_template(robot_type: int) -> SenseTemplate:
     """The sense-message writer of a robot type: its joints in wire order, its foot sensors in spec order
-    (the order of `World.perceptor_rows`)."""
+    (the order of `World.perceptor_rows`), numbers spelled beforehand (`sim.fixed2`)."""
     template = _SENSE_TEMPLATES.get(robot_type)
     if template is None:
         from kinematics.spec import robot_spec
         feet = [sensor.name for sensor in robot_spec(robot_type).sensors if sensor.kind == "force"]
-        template = _SENSE_TEMPLATES[robot_type] = SenseTemplate(wire_joint_order(robot_type)[0], feet)
+        template = _SENSE_TEMPLATES[robot_type] = SenseTemplate(wire_joint_order(robot_type)[0], feet,
+                                                                number=SPELLED_NUMBER)
     return template
 
 

@@ -20,9 +20,11 @@ from typing import NamedTuple
 import numpy as np
 
 from agent.protocol.perceptors import Polar, See, VisibleLine, VisibleObject, VisiblePlayer
-from agent.protocol.sense_template import (LINE_TEMPLATE, PLAYER_CLOSE_BYTES, SEE_CLOSE_BYTES, SEE_OPEN_BYTES,
-                                           SEE_SEPARATOR_BYTES, object_template, part_template, player_template)
+from agent.protocol.sense_template import (PLAYER_CLOSE_BYTES, SEE_CLOSE_BYTES, SEE_OPEN_BYTES, SEE_SEPARATOR_BYTES,
+                                           SPELLED_NUMBER, line_template, object_template, part_template,
+                                           player_template)
 from sim.field import FIELD_LINES_M, LANDMARK_NAMES, LANDMARK_POSITIONS_M
+from sim.fixed2 import spell_fixed2
 
 HALF_FOV_DEG = 60.0
 MIN_DISTANCE_M = 0.1
@@ -34,7 +36,7 @@ _TAN_HALF_FOV = math.tan(math.radians(HALF_FOV_DEG))
 _SIGMAS = np.array([0.0, SIGMA_THETA_DEG, SIGMA_PHI_DEG])
 _PARTS_PER_PLAYER = 5
 _FIXED_COUNT = len(LANDMARK_NAMES) + 1   # landmarks and the ball
-_SEPARATED_LINE = SEE_SEPARATOR_BYTES + LINE_TEMPLATE
+_SEPARATED_LINE = SEE_SEPARATOR_BYTES + line_template(SPELLED_NUMBER)
 _SEPARATOR_SIZE = len(SEE_SEPARATOR_BYTES)
 # Below this many object points (one observer, a few players) the field-of-view prefilter costs more than it saves.
 _PREFILTER_MIN_POINTS = 256
@@ -206,7 +208,8 @@ class SeeWriter:
 
     The item spellings come from agent.protocol.sense_template; the items of every point of the table (an
     object, or a part opening and/or closing its player) are built once per set of players and picked per
-    cycle by index, and each frame's numbers go through one ``bytes % tuple``.
+    cycle by index; the numbers of all frames are spelled at once (`sim.fixed2`) and each frame is one
+    ``bytes % tuple``.
 
     Args:
         part_names: the 5 visible parts of a robot in the point table's order (sim.world.VISIBLE_PARTS).
@@ -234,8 +237,8 @@ class SeeWriter:
         change[0] = change[-1] = True
         np.not_equal(owner[1:], owner[:-1], out=change[1:-1])
         items = self._items[seen_p * 4 + change[:-1] * 2 + change[1:]].tolist()
-        values = sighting.values.ravel().tolist()
-        line_values = sighting.line_values.ravel().tolist()
+        values = spell_fixed2(sighting.values).ravel().tolist()        # every number spelled at once
+        line_values = spell_fixed2(sighting.line_values).ravel().tolist()
         object_rows, line_rows = sighting.object_rows.tolist(), sighting.line_rows.tolist()
         out = []
         for k in range(len(object_rows) - 1):
@@ -248,11 +251,11 @@ class SeeWriter:
 
 def _item_table(players: tuple[tuple[str, int | None], ...], part_names: tuple[str, ...]) -> np.ndarray:
     """Item template per (point, opens its player, closes its player), flattened as point * 4 + 2 open + close."""
-    rows = [[SEE_SEPARATOR_BYTES + object_template(name)] * 4 for name in LANDMARK_NAMES + ("B",)]
+    rows = [[SEE_SEPARATOR_BYTES + object_template(name, SPELLED_NUMBER)] * 4 for name in LANDMARK_NAMES + ("B",)]
     for team, unum in players:
         opening = SEE_SEPARATOR_BYTES + player_template(team, unum)
         for part in part_names:
-            item = part_template(part)
+            item = part_template(part, SPELLED_NUMBER)
             rows.append([item, item + PLAYER_CLOSE_BYTES, opening + item, opening + item + PLAYER_CLOSE_BYTES])
     table = np.empty(4 * len(rows), dtype=object)
     table[:] = [item for row in rows for item in row]

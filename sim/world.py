@@ -514,22 +514,22 @@ class World:
         self.frp_active = active
 
     # ---- sensor readings ------------------------------------------------------------------------------
-    def perceptor_rows(self) -> tuple[list[list[float]], list[int]]:
+    def perceptor_rows(self) -> tuple[np.ndarray, list[int]]:
         """Every robot's perceptor values in one gather, for the sense-message writer (rows in `order`).
 
         Returns:
             (values, feet): values[r] = gyro x, y, z [deg/s], accelerometer x, y, z [m/s²] (see
             `accelerometer_m_s2`), hinge angles [deg] in wire order, then per foot sensor (spec order) its
             contact point x, y, z [m] and force x, y, z [N] in foot axes, stale for a foot without contact
-            (the layout of agent.protocol.sense_template.SenseTemplate); feet[r]: bit i set when the
-            robot's i-th foot sensor has contact. Rows may hold padding after their values.
+            (the layout of agent.protocol.sense_template.SenseTemplate); rows may hold padding after their
+            values. feet[r]: bit i set when the robot's i-th foot sensor has contact.
         """
         d = self.data
         source = np.concatenate((np.degrees(d.qvel[self._root_ang]).ravel(), self.accelerations.ravel(),
                                  np.degrees(d.qpos[self.wire_qadr]),
                                  np.concatenate((self.frp_point, self.frp_force), axis=1).ravel()))
         contact = np.append(self.frp_active, False)
-        return source[self._perceptor_gather].tolist(), (contact[self._foot_gather] @ self._foot_bits).tolist()
+        return source[self._perceptor_gather], (contact[self._foot_gather] @ self._foot_bits).tolist()
 
     def joint_angles_rad(self, key: int) -> np.ndarray:
         """Hinge angles of one robot in spec order [rad]."""

@@ -19,6 +19,7 @@ from __future__ import annotations
 import math
 import re
 import struct
+from functools import cache
 
 from agent.protocol.errors import ProtocolError
 
@@ -51,6 +52,28 @@ def format_fixed2(value: float) -> str:
     if value - value == 0.0:  # finite; cheaper than math.isfinite on this hot path
         return f"{value:.2f}"
     return _c_non_finite(value)
+
+
+#: The sense-message float spelling as a printf format (what the templates of sense_format write).
+FIXED2 = "%.2f"
+#: Hundredths `fixed2_table` spells: values below 400.00 in magnitude (angles, distances, accelerations and
+#: most forces; anything else is formatted as usual).
+FIXED2_TABLE_HUNDREDTHS = 40_000
+
+
+@cache
+def fixed2_table() -> tuple[bytes, ...]:
+    """``FIXED2`` of every hundredth below `FIXED2_TABLE_HUNDREDTHS`, for writers that format many values at once.
+
+    Entry ``m`` is the spelling of ``m / 100`` and entry ``FIXED2_TABLE_HUNDREDTHS + m`` that of ``-m / 100``
+    (so index ``FIXED2_TABLE_HUNDREDTHS`` is ``-0.00``). A value whose correctly rounded hundredths are ``m``
+    has exactly the spelling of entry ``m`` (or the negative one): printf rounds the exact binary value to the
+    nearest hundredth, and the double nearest ``m / 100`` rounds back to ``m / 100``. Looking spellings up
+    here costs a fifth of formatting them; sim.fixed2 finds the entries with numpy (built on first use).
+    """
+    count = FIXED2_TABLE_HUNDREDTHS
+    spell = FIXED2.encode("ascii")
+    return tuple([spell % (m / 100) for m in range(count)] + [spell % -(m / 100) for m in range(count)])
 
 
 def format_g6(value: float | int) -> str:

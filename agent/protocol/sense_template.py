@@ -10,7 +10,11 @@ tests/agent/test_protocol_sense_template.py checks it writes `format_sense`'s by
 
 The See predicate's content varies too much for one template per shape; the vision writer (sim.vision)
 assembles it from the item templates here (`object_template`, `player_template`, `part_template`,
-`LINE_TEMPLATE`) and hands it over as bytes.
+`line_template`) and hands it over as bytes.
+
+Every template takes its numbers either as floats (``number=PRINTF_NUMBER``, printf writes them) or as
+their spellings written beforehand (``number=SPELLED_NUMBER``: bytes from `numbers.fixed2_table`, which a
+writer of many values at once looks up instead of formatting each).
 """
 
 from __future__ import annotations
@@ -19,12 +23,15 @@ from collections.abc import Sequence
 from operator import itemgetter
 
 from agent.protocol.errors import ProtocolError
+from agent.protocol.numbers import FIXED2
 from agent.protocol.perceptors import (Accelerometer, ForceResistance, GameState, Gyro, Hear, See, Sense,
                                        TimePerceptor)
 from agent.protocol.sense_format import (ACC, FRP, GYR, HJ, LINE, OBJECT, PART, PLAYER_CLOSE, PLAYER_ID,
                                          PLAYER_OPEN, SEE_CLOSE, SEE_OPEN, SEE_SEPARATOR, TIME, check_atoms,
                                          game_state_text, hear_text, server_layout)
 
+#: Number placeholders of the templates: floats for printf, or spellings (bytes) written beforehand.
+PRINTF_NUMBER, SPELLED_NUMBER = FIXED2, "%s"
 #: The See predicate's frame and separators, and a field line's item (six values: both ends' d, θ, φ).
 SEE_OPEN_BYTES = SEE_OPEN.encode("ascii")
 SEE_SEPARATOR_BYTES = SEE_SEPARATOR.encode("ascii")
@@ -37,19 +44,20 @@ _TIME_SLOT, _GS_SLOT, _SEE_SLOT, _HEAR_SLOT = range(4)
 _ZERO3 = (0.0, 0.0, 0.0)
 
 
-def _with_name(template: str, name: str) -> str:
-    """``template`` with its first ``%s`` replaced by ``name`` (a ``%`` in the name escaped), for later ``%``."""
+def _with_name(template: str, name: str, number: str = PRINTF_NUMBER) -> str:
+    """``template`` with its numbers' placeholders made ``number`` and then its first ``%s`` (always the name)
+    replaced by ``name``, a ``%`` in the name escaped, for later ``%``."""
     check_atoms([name], template)
-    return template.replace("%s", name.replace("%", "%%"), 1)
+    return template.replace(FIXED2, number).replace("%s", name.replace("%", "%%"), 1)
 
 
-def object_template(name: str) -> bytes:
+def object_template(name: str, number: str = PRINTF_NUMBER) -> bytes:
     """A vision object item (``(F1L (pol d θ φ))``) as a template of its three values.
 
     Raises:
         ProtocolError: ``name`` is not an atom.
     """
-    return _with_name(OBJECT, name).encode("ascii")
+    return _with_name(OBJECT, name, number).encode("ascii")
 
 
 def player_template(team: str, unum: int | None) -> bytes:
@@ -64,13 +72,18 @@ def player_template(team: str, unum: int | None) -> bytes:
     return text.replace("%", "%%").encode("ascii")
 
 
-def part_template(name: str) -> bytes:
+def part_template(name: str, number: str = PRINTF_NUMBER) -> bytes:
     """One visible part of a player (`` (head (pol d θ φ))``, leading space included), three values.
 
     Raises:
         ProtocolError: ``name`` is not an atom.
     """
-    return _with_name(PART, name).encode("ascii")
+    return _with_name(PART, name, number).encode("ascii")
+
+
+def line_template(number: str = PRINTF_NUMBER) -> bytes:
+    """A field line item (``(L (pol d θ φ) (pol d θ φ))``), six values."""
+    return LINE.replace(FIXED2, number).encode("ascii")
 
 
 def time_bytes(now_s: float) -> bytes:
@@ -109,13 +122,15 @@ class SenseTemplate:
         joints: wire joint names in the server's order (the order the angles come in).
         foot_sensors: the robot's FRP sensor names (``rf``, ``lf``, and ``rf1``, ``lf1`` on type 4).
         gyro_name / acc_name: bodies of the gyro and the accelerometer.
+        number: `PRINTF_NUMBER` (values are floats) or `SPELLED_NUMBER` (values are their spellings).
 
     Raises:
         ProtocolError: a name is not an atom.
     """
 
     def __init__(self, joints: Sequence[str], foot_sensors: Sequence[str], gyro_name: str = "torso",
-                 acc_name: str = "torso") -> None:
+                 acc_name: str = "torso", number: str = PRINTF_NUMBER) -> None:
+        self.number = number
         self.joints = tuple(joints)
         self.foot_sensors = tuple(foot_sensors)
         self.gyro_name = gyro_name
@@ -130,10 +145,10 @@ class SenseTemplate:
         """One sense message (frame payload).
 
         Args:
-            values: `value_count` floats (more are ignored): gyro rate x, y, z [deg/s]; acceleration x, y, z
-                [m/s²]; the joint angles [deg] in `joints` order; then per foot sensor in `foot_sensors`
-                order its contact point x, y, z [m] and force x, y, z [N] (ignored for sensors not in
-                ``frp_mask``).
+            values: `value_count` floats, or their spellings (more are ignored): gyro rate x, y, z [deg/s];
+                acceleration x, y, z [m/s²]; the joint angles [deg] in `joints` order; then per foot sensor in
+                `foot_sensors` order its contact point x, y, z [m] and force x, y, z [N] (ignored for sensors
+                not in ``frp_mask``).
             time, game_state: `time_bytes` and `game_state_bytes` of this cycle.
             frp_mask: bit i set = ``foot_sensors[i]`` has contact (its FRP is sent).
             see: the See predicate (from the vision writer), or None in a cycle without vision.
@@ -164,18 +179,18 @@ class SenseTemplate:
         for kind in order:
             if kind == "HJ":
                 index = next(joints)
-                pieces.append(_with_name(HJ, self.joints[index]))
+                pieces.append(_with_name(HJ, self.joints[index], self.number))
                 picks.append(first + 6 + index)
             elif kind == "FRP":
                 name = next(feet).name
                 start = first + 6 + joint_count + 6 * self.foot_sensors.index(name)
-                pieces.append(_with_name(FRP, name))
+                pieces.append(_with_name(FRP, name, self.number))
                 picks.extend(range(start, start + 6))
             elif kind == "GYR":
-                pieces.append(_with_name(GYR, self.gyro_name))
+                pieces.append(_with_name(GYR, self.gyro_name, self.number))
                 picks.extend((first, first + 1, first + 2))
             elif kind == "ACC":
-                pieces.append(_with_name(ACC, self.acc_name))
+                pieces.append(_with_name(ACC, self.acc_name, self.number))
                 picks.extend((first + 3, first + 4, first + 5))
             elif kind in ("time", "GS", "See", "hear"):
                 pieces.append("%s")

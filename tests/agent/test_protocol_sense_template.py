@@ -14,8 +14,9 @@ from agent.protocol.perceptors import (Accelerometer, ForceResistance, GameState
                                        TimePerceptor, VisibleLine, VisibleObject, VisiblePlayer)
 from agent.protocol.sense import format_sense, parse_sense
 from agent.protocol.sense_template import (LINE_TEMPLATE, PLAYER_CLOSE_BYTES, SEE_CLOSE_BYTES, SEE_OPEN_BYTES,
-                                           SEE_SEPARATOR_BYTES, SenseTemplate, game_state_bytes, hear_bytes,
-                                           object_template, part_template, player_template, time_bytes)
+                                           SEE_SEPARATOR_BYTES, SPELLED_NUMBER, SenseTemplate, game_state_bytes,
+                                           hear_bytes, line_template, object_template, part_template,
+                                           player_template, time_bytes)
 
 JOINTS = ("hj1 hj2 raj1 raj2 raj3 raj4 laj1 laj2 laj3 laj4 rlj1 rlj2 rlj3 rlj4 rlj5 rlj6 "
           "llj1 llj2 llj3 llj4 llj5 llj6").split()
@@ -109,6 +110,21 @@ def test_random_values_match_format_sense(values: list[float], mask: int, with_s
                            None if see is None else _see_bytes(see)) == expected
 
 
+def test_spelled_numbers_give_the_same_bytes() -> None:
+    """Writers that spell many numbers at once pass bytes (numbers.fixed2_table) into "%s" templates."""
+    printf, spelled = SenseTemplate(JOINTS_TOE, ("rf", "lf", "rf1", "lf1")), SenseTemplate(
+        JOINTS_TOE, ("rf", "lf", "rf1", "lf1"), number=SPELLED_NUMBER)
+    values = [SPECIAL[i % len(SPECIAL)] * (1 + i / 5) for i in range(printf.value_count)]
+    spellings = [b"%.2f" % v for v in values]
+    state = game_state_bytes(GameState(None, None, 0, 0, 1.0, "PlayOn"))
+    for mask in range(16):
+        assert spelled.format(spellings, time_bytes(1.0), state, mask, b"(See )") == \
+            printf.format(values, time_bytes(1.0), state, mask, b"(See )")
+    assert object_template("F%1", SPELLED_NUMBER) % (b"1.00", b"-2.50", b"3.00") == b"(F%1 (pol 1.00 -2.50 3.00))"
+    assert part_template("head", SPELLED_NUMBER) % (b"1.00", b"2.00", b"3.00") == b" (head (pol 1.00 2.00 3.00))"
+    assert line_template(SPELLED_NUMBER) % tuple(b"%d.00" % i for i in range(6)) == LINE_TEMPLATE % tuple(range(6))
+
+
 def test_names_that_are_not_atoms_are_refused() -> None:
     with pytest.raises(ProtocolError):
         SenseTemplate(["hj1", "bad name"], ("rf",))
@@ -125,4 +141,7 @@ def test_a_percent_sign_in_a_name_is_written_as_itself() -> None:
     written = template.format([0.0] * 8, time_bytes(0.0), game_state_bytes(GameState(None, None, 0, 0, 0.0, "x%s")))
     assert b"(HJ (n a%d) (ax 0.00))" in written and b"(pm x%s)" in written
     assert object_template("F%1") % (1.0, 2.0, 3.0) == b"(F%1 (pol 1.00 2.00 3.00))"
+    assert SenseTemplate(["x%.2f", "hj2"], (), number=SPELLED_NUMBER).format(
+        [b"1.00"] * 8, b"", b"") == b"(GYR (n torso) (rt 1.00 1.00 1.00))(ACC (n torso) (a 1.00 1.00 1.00))" \
+        b"(HJ (n x%.2f) (ax 1.00))(HJ (n hj2) (ax 1.00))"
     assert (player_template("T%s", 2) + PLAYER_CLOSE_BYTES) % () == b"(P (team T%s) (id 2))"
