@@ -1,0 +1,217 @@
+"""Dynamic elements of motion playback: walk leaning, walk slowdown and turn gain (REFERENCE §7.2, §7.3).
+
+Each element is a parametrised curve whose numbers live in a TOML file (default
+``motions/params/dynamic_elements.toml``), so a tuner can rewrite them without touching code:
+
+* **walk lean**: offset [deg] added to a ``computed`` joint of a walk phase, e.g. ``left_walk_lean_lle3``:
+  ``offset = joint_offset_deg[kind] * lean * speed_scale(speed) * phase_scale(phase)``, where ``lean`` in
+  [-1, 1] is the request (+ = curve left), the ``left_`` values move only for a left lean and the ``right_``
+  values only for a right lean (the seed agent's leaning side makes the shorter step);
+* **slowdown**: the k-th phase (k = 0, 1, ...) played after a stop request lasts
+  ``1 + stretch * min(1, (k + 1) / ramp_phases)`` times its authored duration;
+* **turn gain**: a requested turn [deg] -> gain in [min_gain, 1] that scales a turn motion, and back
+  (the turn one motion makes at a gain), for dead reckoning and the turn benchmark's prediction error.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+import tomllib
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field, fields
+from pathlib import Path
+
+import motions
+
+#: The parameter file shipped with the motions.
+DEFAULT_PARAMS_PATH = Path(motions.__file__).resolve().parent / "params" / "dynamic_elements.toml"
+
+_LEAN_NAME = re.compile(r"^(left|right)_walk_lean_([lr])([a-z]e\d+)$")
+
+
+def piecewise_linear(x: float, points: Sequence[float], values: Sequence[float]) -> float:
+    """Linear interpolation of ``values`` over increasing ``points``, constant beyond both ends."""
+    if x <= points[0]:
+        return float(values[0])
+    for i in range(1, len(points)):
+        if x <= points[i]:
+            span = points[i] - points[i - 1]
+            fraction = (x - points[i - 1]) / span if span > 0 else 1.0
+            return float(values[i - 1] + fraction * (values[i] - values[i - 1]))
+    return float(values[-1])
+
+
+def _check_curve(name: str, points: Sequence[float], values: Sequence[float]) -> None:
+    if len(points) != len(values) or not points:
+        raise ValueError(f"{name}: points and values must have the same non-zero length "
+                         f"({len(points)} vs {len(values)})")
+    if any(b < a for a, b in zip(points, points[1:])):
+        raise ValueError(f"{name}: points must increase, got {list(points)}")
+
+
+@dataclass(frozen=True)
+class WalkLean:
+    """Walk lean: offsets of the computed walk joints for a lean request (see the module docstring)."""
+
+    joint_offsets_deg: Mapping[str, float] = field(default_factory=lambda: {"le3": 8.0, "le5": -8.0})
+    """Joint kind (effector name without the side letter, e.g. ``le3``) -> offset at a full lean [deg]."""
+    speed_points_m_s: tuple[float, ...] = (0.0, 1.0)
+    """Walk speeds of the speed curve [m/s]."""
+    speed_scale: tuple[float, ...] = (1.0, 1.0)
+    """Scale of the offsets at those speeds."""
+    phase_points: tuple[float, ...] = (0.0, 1.0)
+    """Positions in the walk cycle (0..1) of the phase curve."""
+    phase_scale: tuple[float, ...] = (1.0, 1.0)
+    """Scale of the offsets at those positions."""
+    provenance: str = ""
+
+    def __post_init__(self) -> None:
+        _check_curve("walk_lean speed curve", self.speed_points_m_s, self.speed_scale)
+        _check_curve("walk_lean phase curve", self.phase_points, self.phase_scale)
+
+    def offset_deg(self, computed_name: str, lean: float, speed_m_s: float = 0.0, phase: float = 0.0) -> float | None:
+        """Offset [deg] for a computed value called ``computed_name``; None if the name is no walk lean.
+
+        Args:
+            computed_name: ``{left|right}_walk_lean_{effector}``, e.g. ``left_walk_lean_lle3``.
+            lean: request in [-1, 1], + = curve left (values beyond are clipped).
+            speed_m_s: the walk's speed (its ``speed_m_s`` constant).
+            phase: the phase's position in the walk cycle, 0..1.
+        """
+        match = _LEAN_NAME.match(computed_name)
+        if match is None:
+            return None
+        side, _, kind = match.groups()
+        lean = max(-1.0, min(1.0, lean))
+        amount = lean if side == "left" else -lean
+        if amount <= 0.0:
+            return 0.0
+        offset = self.joint_offsets_deg.get(kind, 0.0)
+        return (offset * amount * piecewise_linear(speed_m_s, self.speed_points_m_s, self.speed_scale)
+                * piecewise_linear(phase, self.phase_points, self.phase_scale))
+
+
+@dataclass(frozen=True)
+class Slowdown:
+    """Walk slowdown: phases after a stop request are stretched (see the module docstring)."""
+
+    stretch: float = 0.35
+    """Extra duration at full effect (0.35 = 35 % longer)."""
+    ramp_phases: int = 1
+    """Phases over which the stretch grows to full effect."""
+    provenance: str = ""
+
+    def __post_init__(self) -> None:
+        if not (self.stretch > -1.0 and math.isfinite(self.stretch)):
+            raise ValueError(f"slowdown stretch must be > -1, got {self.stretch!r}")
+        if self.ramp_phases < 1:
+            raise ValueError(f"slowdown ramp_phases must be >= 1, got {self.ramp_phases!r}")
+
+    def factor(self, phases_since_stop: int) -> float:
+        """Duration factor of the phase ``phases_since_stop`` (0 = the first one) after a stop request."""
+        return 1.0 + self.stretch * min(1.0, (phases_since_stop + 1) / self.ramp_phases)
+
+
+@dataclass(frozen=True)
+class TurnGain:
+    """Turn gain: requested turn [deg] -> gain, and the turn one turn motion makes at a gain."""
+
+    min_gain: float = 0.3
+    """Smallest gain."""
+    offset_deg: float = 3.0
+    """Requested turn below which the smallest gain is used [deg]."""
+    span_deg: float = 37.0
+    """Requested turn range over which the gain rises to 1 [deg]."""
+    predicted_base_deg: float = 3.0
+    """Turn of one motion at the smallest gain [deg]."""
+    predicted_slope_deg: float = 46.0
+    """Extra turn from the smallest gain to gain 1 [deg]."""
+    provenance: str = ""
+
+    def __post_init__(self) -> None:
+        if not 0.0 < self.min_gain <= 1.0 or self.span_deg <= 0.0:
+            raise ValueError(f"turn gain needs 0 < min_gain <= 1 and span_deg > 0, got {self.min_gain}, {self.span_deg}")
+
+    def gain(self, turn_deg: float) -> float:
+        """Gain for a requested turn of ``turn_deg`` (sign ignored: the motion's side gives the direction)."""
+        excess = min(self.span_deg, abs(abs(turn_deg) - self.offset_deg))
+        return self.min_gain + (1.0 - self.min_gain) * excess / self.span_deg
+
+    def predicted_turn_deg(self, gain: float) -> float:
+        """Turn [deg] one turn motion makes at ``gain`` (dead reckoning)."""
+        if self.min_gain >= 1.0:
+            return self.predicted_base_deg + self.predicted_slope_deg
+        return self.predicted_base_deg + self.predicted_slope_deg * (gain - self.min_gain) / (1.0 - self.min_gain)
+
+
+@dataclass(frozen=True)
+class DynamicParams:
+    """All dynamic elements; ``source`` is the file they were read from (None: defaults)."""
+
+    walk_lean: WalkLean = field(default_factory=WalkLean)
+    slowdown: Slowdown = field(default_factory=Slowdown)
+    turn_gain: TurnGain = field(default_factory=TurnGain)
+    source: str | None = None
+
+
+def _section(cls: type, table: Mapping[str, object], path: str, name: str) -> object:
+    known = {f.name for f in fields(cls)}
+    unknown = set(table) - known
+    if unknown:
+        raise ValueError(f"{path}: [{name}] has unknown keys {sorted(unknown)}; known: {sorted(known)}")
+    values = {key: tuple(value) if isinstance(value, list) else value for key, value in table.items()}
+    try:
+        return cls(**values)
+    except (TypeError, ValueError) as error:
+        raise ValueError(f"{path}: [{name}]: {error}") from None
+
+
+def load_dynamic_params(path: str | Path | None = None) -> DynamicParams:
+    """Read the dynamic elements from a TOML file (default: DEFAULT_PARAMS_PATH); missing sections keep
+    their defaults.
+
+    Raises:
+        ValueError: a bad TOML file, an unknown key or a bad value (message names the file and section).
+        OSError: the file cannot be read.
+    """
+    path = Path(path) if path is not None else DEFAULT_PARAMS_PATH
+    try:
+        data = tomllib.loads(path.read_text(encoding="utf-8"))
+    except tomllib.TOMLDecodeError as error:
+        raise ValueError(f"{path}: {error}") from None
+    sections = {"walk_lean": WalkLean, "slowdown": Slowdown, "turn_gain": TurnGain}
+    unknown = set(data) - set(sections)
+    if unknown:
+        raise ValueError(f"{path}: unknown sections {sorted(unknown)}; known: {sorted(sections)}")
+    built = {name: _section(cls, data.get(name, {}), str(path), name) for name, cls in sections.items()}
+    return DynamicParams(**built, source=str(path))  # type: ignore[arg-type]
+
+
+def _toml_value(value: object) -> str:
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, (int, float)):
+        return repr(float(value)) if isinstance(value, float) else str(value)
+    if isinstance(value, str):
+        return '"' + value.replace("\\", "\\\\").replace('"', '\\"') + '"'
+    if isinstance(value, Mapping):
+        return "{ " + ", ".join(f"{k} = {_toml_value(v)}" for k, v in value.items()) + " }"
+    if isinstance(value, (list, tuple)):
+        return "[" + ", ".join(_toml_value(v) for v in value) + "]"
+    raise TypeError(f"cannot write {value!r} as TOML")
+
+
+def dumps_dynamic_params(params: DynamicParams, header: str) -> str:
+    """TOML text of ``params`` with ``header`` (lines written as ``#`` comments) on top."""
+    lines = [f"# {line}".rstrip() for line in header.splitlines()]
+    for name in ("walk_lean", "slowdown", "turn_gain"):
+        section = getattr(params, name)
+        lines += ["", f"[{name}]"]
+        lines += [f"{f.name} = {_toml_value(getattr(section, f.name))}" for f in fields(section)]
+    return "\n".join(lines) + "\n"
+
+
+def save_dynamic_params(params: DynamicParams, path: str | Path, header: str) -> None:
+    """Write ``params`` to ``path`` (the tuner's way to change a curve); ``header`` says how they were made."""
+    Path(path).write_text(dumps_dynamic_params(params, header), encoding="utf-8")

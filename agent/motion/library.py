@@ -1,0 +1,117 @@
+"""The motions an agent can play, by name, with how each is played (Webots timing, turn-gain base).
+
+Motion files live in ``motions/files/`` (type 0) and ``motions/files/type<N>/`` (a robot type's own versions,
+which replace type 0's file of the same motion name). XML phase files are named by their ``low_skill``,
+Webots files by their file stem. Loading happens here, at construction, never in the agent's step.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass
+from pathlib import Path
+
+import motions
+from motions import Motion
+
+#: The motion files shipped with the toolkit.
+DEFAULT_MOTION_DIR = Path(motions.__file__).resolve().parent / "files"
+
+
+@dataclass(frozen=True)
+class WebotsTiming:
+    """How a Webots motion is played (REFERENCE §6b, thesis playback).
+
+    duration_cycles: cycles per pose (seed default 2 = 40 ms); pose_step: poses advanced per step (1 plays
+    every pose, 2 every other one); use_file_times: take each pose's duration from the file's time column
+    instead of ``duration_cycles``.
+    """
+
+    duration_cycles: int = 2
+    pose_step: int = 1
+    use_file_times: bool = False
+
+    def __post_init__(self) -> None:
+        if self.duration_cycles < 1 or self.pose_step < 1:
+            raise ValueError(f"duration_cycles and pose_step must be >= 1, got {self.duration_cycles}, {self.pose_step}")
+
+
+class MotionLibrary:
+    """Name -> motion, plus per-motion playback settings.
+
+    Args:
+        motions: initial motions (name -> Motion).
+    """
+
+    def __init__(self, motions: Mapping[str, Motion] | None = None) -> None:
+        self._motions: dict[str, Motion] = dict(motions or {})
+        self.webots_timing: dict[str, WebotsTiming] = {}
+        """Motion name -> Webots timing (default ``WebotsTiming()``)."""
+        self.gain_bases: dict[str, str] = {}
+        """Motion name -> name of the motion a gain scales from (same keyframe count); without one the gain
+        scales the deviation from the motion's first keyframe."""
+
+    def add(self, motion: Motion, name: str | None = None) -> str:
+        """Add (or replace) a motion; returns the name it is known by."""
+        key = name or motion.name
+        self._motions[key] = motion
+        return key
+
+    def get(self, name: str) -> Motion:
+        """The motion called ``name``.
+
+        Raises:
+            KeyError: no such motion (the message lists the known names).
+        """
+        try:
+            return self._motions[name]
+        except KeyError:
+            raise KeyError(f"unknown motion {name!r}; known: {', '.join(sorted(self._motions)) or 'none'}") from None
+
+    def __contains__(self, name: object) -> bool:
+        return name in self._motions
+
+    @property
+    def names(self) -> list[str]:
+        return sorted(self._motions)
+
+    def timing(self, name: str) -> WebotsTiming:
+        return self.webots_timing.get(name, WebotsTiming())
+
+    def load_folder(self, folder: str | Path, pattern: Iterable[str] = ("*.xml", "*.motion")) -> list[str]:
+        """Load every motion file of ``folder`` (not its subfolders); returns the names added.
+
+        Raises:
+            MotionFormatError: a malformed file (path, line, field).
+        """
+        added = []
+        for glob in pattern:
+            for path in sorted(Path(folder).glob(glob)):
+                motion = motions.load(path)
+                added.append(self.add(motion, motion.name if motion.source_format == motions.XML else path.stem))
+        return added
+
+
+def default_library(robot_type: int = 0, folder: str | Path | None = None) -> MotionLibrary:
+    """The shipped motions for a robot type: ``motions/files`` then ``motions/files/type<N>`` on top, with
+    the turn motions' gain bases and Webots timings of ``motions/files/playback.toml`` if present.
+
+    Raises:
+        MotionFormatError: a malformed motion file.
+    """
+    import tomllib
+
+    root = Path(folder) if folder is not None else DEFAULT_MOTION_DIR
+    library = MotionLibrary()
+    if root.is_dir():
+        library.load_folder(root)
+        typed = root / f"type{robot_type}"
+        if typed.is_dir():
+            library.load_folder(typed)
+    settings_path = root / "playback.toml"
+    if settings_path.is_file():
+        settings = tomllib.loads(settings_path.read_text(encoding="utf-8"))
+        library.gain_bases.update(settings.get("gain_bases", {}))
+        for name, table in settings.get("webots_timing", {}).items():
+            library.webots_timing[name] = WebotsTiming(**table)
+    return library
