@@ -22,6 +22,7 @@ COMMAND_MODULES = (
     "motion_studio.commands.agent",
     "motion_studio.commands.serve",
     "motion_studio.commands.edit",
+    "motion_studio.commands.bench_skills",
 )
 
 

@@ -5,12 +5,8 @@ The robot is a real ``agent.Agent`` hosted in-process by ``sim.inprocess.InProce
 clear spot at the zero pose, stands for ``SETTLE_S``, plays the motion, then holds its last pose for
 ``HOLD_S``. The joints are driven the only way an agent can, by joint velocities.
 
-Which controller plays the motion: the agent room's motion controller (``agent/motion``, engineer F) is not
-in the tree yet. Until it lands, ``KeyframeTracker`` plays it: each cycle every joint gets the velocity that
-reaches the linearly interpolated pose ``LEAD_S`` ahead, from the angle the HJ perceptor reports
-(REFERENCE §6b's thesis playback, ω = (target − current)/(Duration × 20 ms), with Duration = 3 cycles, which
-also covers the two-cycle action delay of §3.9). Swapping in the controller means passing another
-``behavior_factory``.
+Which controller plays the motion: the agent's own (``agent.motion.MotionController`` through
+``ControllerPlayer``), so the preview shows what a match shows; ``behavior_factory`` swaps in another.
 
 Fell: the torso's up axis z component below 0.6 (REFERENCE §8.1's criterion), at any time of the run.
 """
@@ -27,9 +23,9 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from agent.agent import Agent, AgentConfig, Behavior
+from agent.motion import MotionController, MotionLibrary, MotionRequest, load_dynamic_params
 from agent.protocol.effectors import Action, JointVelocity
 from agent.world_model import WorldModel
-from kinematics import robot_spec
 from motions import Motion
 from sim.engine import FrozenReferee, SimEngine
 from sim.inprocess import InProcessHost
@@ -40,8 +36,6 @@ logger = logging.getLogger(__name__)
 SETTLE_S = 0.5
 #: Seconds the last pose is held after the motion ends (does it stay up?).
 HOLD_S = 1.0
-#: Look-ahead of the tracker [s]: 3 cycles (REFERENCE §6b Duration, covers the 2-cycle action delay).
-LEAD_S = 0.06
 #: Torso up-axis z below this counts as fallen (REFERENCE §8.1).
 FALLEN_UP_Z = 0.6
 #: Where the robot plays, field frame [m]: clear of the ball at the centre spot and of the goals.
@@ -100,54 +94,64 @@ class PreviewResult:
                 "final_torso_height_m": float(self.torso_height_m[-1])}
 
 
-class KeyframeTracker:
-    """Interim motion player (see the module docstring): a Behavior that plays one motion once.
+class ControllerPlayer:
+    """A Behavior that plays one motion once with the agent's own motion controller (``agent.motion``).
+
+    Why the agent's controller: the preview must show what a match will show, with the same playback
+    (phase durations in cycles, action-delay compensation, blending from the start pose, dynamic
+    elements of ``motions/params/dynamic_elements.toml``). The motion is requested for its authored
+    length; a cyclic motion (a walk looping on ``next``) then gets its stop request and ends through its
+    ``finalize`` phases, as in a match when the behaviour stops walking.
 
     Args:
-        motion: the motion; played in list order, from the robot's pose when it starts.
+        motion: the motion (played under its own name in a one-motion library).
         robot_type: 0-4 (the joints commanded).
     """
 
-    name = "keyframe tracker (interim, until agent/motion's MotionController lands)"
+    name = "agent.motion.MotionController"
+    #: A cyclic motion that has not ended this long after its stop request is cut off [s].
+    STOP_LIMIT_S = 5.0
 
     def __init__(self, motion: Motion, robot_type: int = 0) -> None:
         self.motion = motion
-        self.joints = robot_spec(robot_type).joints
+        self.controller = MotionController(MotionLibrary({motion.name: motion}), load_dynamic_params(),
+                                           robot_type=robot_type)
         self.cycle_s = 0.02
         self.started = False
         self.calls_since_start = 0
-        self._start_pose: dict[str, float] | None = None
 
     def start(self) -> None:
         """Begin playing at the next cycle."""
         self.started = True
         self.calls_since_start = 0
-        self._start_pose = None
 
     @property
     def time_s(self) -> float:
         """Motion time of the last command sent [s]."""
         return self.calls_since_start * self.cycle_s
 
+    @property
+    def finished(self) -> bool:
+        """The motion has ended (or was cut off ``STOP_LIMIT_S`` after its stop request)."""
+        if not self.started or self.calls_since_start == 0:
+            return False
+        return self.controller.idle or self.time_s > self.motion.duration_s + self.STOP_LIMIT_S
+
     def __call__(self, world: WorldModel) -> list[Action]:
-        current = world.body.joints_rad
-        if not self.started or not current:
+        if not self.started or not world.body.joints_rad:
             return []
-        if self._start_pose is None:
-            self._start_pose = {j.perceptor: current.get(j.perceptor, 0.0) for j in self.joints}
         self.calls_since_start += 1
-        target = self.motion.pose_at(self.time_s + LEAD_S, start_pose=self._start_pose, hold_unlisted=True)
-        actions: list[Action] = []
-        for joint in self.joints:
-            angle = current.get(joint.perceptor)
-            if angle is None:
-                continue
-            goal = target.get(joint.perceptor)
-            goal = self._start_pose[joint.perceptor] if goal is None else goal
-            velocity = (goal - angle) / LEAD_S
-            limit = joint.max_speed_rad_s
-            actions.append(JointVelocity(joint.effector, max(-limit, min(limit, velocity))))
-        return actions
+        playing = self.time_s <= self.motion.duration_s + 1e-9 and self.controller.completed[self.motion.name] == 0
+        self.controller.request(MotionRequest(self.motion.name if playing else None))
+        angles_deg = {name: math.degrees(value) for name, value in world.body.joints_rad.items()}
+        velocities = self.controller.update(angles_deg, world.now_s)
+        return [JointVelocity(effector, value) for effector, value in velocities.items()]
+
+
+def _finished(player: Behavior, motion: Motion) -> bool:
+    """Whether ``player`` is done: its own ``finished`` if it has one, else the motion's length has passed."""
+    finished = getattr(player, "finished", None)
+    return bool(finished) if finished is not None else getattr(player, "time_s", 0.0) >= motion.duration_s
 
 
 def _display_transform(position_m: np.ndarray, heading_deg: float) -> np.ndarray:
@@ -176,7 +180,7 @@ def run_physics_preview(motion: Motion, robot_type: int = 0,
         progress: called with the fraction done (0..1) every few cycles.
         cancel: when set, the run stops and raises PreviewCancelled.
         behavior_factory: (motion, robot_type) -> the agent behavior that plays it and has ``start()``;
-            default ``KeyframeTracker``.
+            default ``ControllerPlayer``.
         hold_s: seconds recorded after the motion ends.
 
     Returns:
@@ -186,7 +190,7 @@ def run_physics_preview(motion: Motion, robot_type: int = 0,
         PreviewCancelled: ``cancel`` was set.
     """
     wall_start = time.perf_counter()
-    tracker = (behavior_factory or KeyframeTracker)(motion, robot_type)
+    tracker = (behavior_factory or ControllerPlayer)(motion, robot_type)
     engine = SimEngine(seed=0, referee=FrozenReferee())
     host = InProcessHost(engine)
     agent = Agent(AgentConfig("preview", 1, robot_type, say=False), tracker)
@@ -199,10 +203,12 @@ def run_physics_preview(motion: Motion, robot_type: int = 0,
     display = _display_transform(world.torso_position(key), world.heading_deg(key))
     cycle_s = world.params.cycle_s
     settle_cycles = round(SETTLE_S / cycle_s)
-    play_cycles = math.ceil((motion.duration_s + hold_s) / cycle_s)
-    total = settle_cycles + play_cycles
+    hold_cycles = math.ceil(hold_s / cycle_s)
+    # Estimated length for the progress bar; the run lasts until the player says the motion ended.
+    total = settle_cycles + math.ceil(motion.duration_s / cycle_s) + hold_cycles
     times, heights, coms, ups, poses = [], [], [], [], []
-    for cycle in range(total):
+    cycle, ended_at = 0, None
+    while ended_at is None or cycle < ended_at + hold_cycles:
         if cancel is not None and cancel.is_set():
             raise PreviewCancelled("physics preview cancelled")
         if cycle == settle_cycles:
@@ -223,8 +229,14 @@ def run_physics_preview(motion: Motion, robot_type: int = 0,
             pose[:3, :3], pose[:3, 3] = xmat[body].reshape(3, 3), xpos[body]
             bodies[name] = display @ pose
         poses.append(bodies)
-        if progress is not None and (cycle % 10 == 0 or cycle == total - 1):
-            progress((cycle + 1) / total)
+        if ended_at is None and cycle >= settle_cycles and _finished(tracker, motion):
+            ended_at = cycle
+            total = cycle + hold_cycles
+        cycle += 1
+        if progress is not None and cycle % 10 == 0:
+            progress(min(cycle / max(total, 1), 1.0))
+    if progress is not None:
+        progress(1.0)
     up = np.array(ups)
     fallen = np.flatnonzero(up < FALLEN_UP_Z)
     times_arr = np.array(times)

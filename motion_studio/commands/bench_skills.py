@@ -1,0 +1,92 @@
+"""``motion-studio bench skills``: the skill benchmarks (walk, turn, kick, stand-up) on our simulator.
+
+Each skill's benchmark lives in ``motion_studio.skill_bench.<skill>`` with ``run(quick, seed, progress)``
+returning JSON-ready figures and ``plot(result, out_dir)`` writing PNGs. This command runs the chosen ones,
+shows progress, prints one JSON object (``--json``) or a table, writes the plots, and keeps each finished
+skill's figures in ``<out>/skills.json`` at once, so an interrupted run loses no finished skill.
+"""
+
+from __future__ import annotations
+
+import importlib
+import json
+import time
+from pathlib import Path
+from typing import Annotated, Any
+
+import typer
+
+from motion_studio.cli import bench_app
+
+#: Benchmarked skills in the order they run (the module name under motion_studio.skill_bench).
+SKILLS = ("walk", "turn", "kick", "standup")
+
+
+def _flatten(prefix: str, value: Any, rows: list[tuple[str, str]]) -> None:
+    """Rows 'walk.speed_m_s  0.52' of nested figures, lists shortened (they are in the JSON)."""
+    if isinstance(value, dict):
+        for key, item in value.items():
+            _flatten(f"{prefix}.{key}" if prefix else str(key), item, rows)
+    elif isinstance(value, list):
+        shown = value if len(value) <= 6 else value[:6] + ["..."]
+        rows.append((prefix, json.dumps(shown) if len(value) <= 6 else str(shown)))
+    elif isinstance(value, float):
+        rows.append((prefix, f"{value:.4g}"))
+    else:
+        rows.append((prefix, str(value)))
+
+
+def run_skill_benchmarks(skills: list[str], quick: bool, seed: int, out_dir: Path,
+                         show_progress: bool = True) -> dict[str, Any]:
+    """Run the benchmarks of ``skills``; returns {skill: figures (with "plots" and "wall_s")}."""
+    from tqdm import tqdm
+
+    out_dir.mkdir(parents=True, exist_ok=True)
+    checkpoint = out_dir / "skills.json"
+    results: dict[str, Any] = {}
+    for skill in skills:
+        module = importlib.import_module(f"motion_studio.skill_bench.{skill}")
+        bar = tqdm(desc=f"bench {skill}", unit="trial", disable=not show_progress, leave=False)
+
+        def progress(done: int, total: int, bar: Any = bar) -> None:
+            bar.total = total
+            bar.n = done
+            bar.refresh()
+
+        started = time.perf_counter()
+        figures = module.run(quick=quick, seed=seed, progress=progress)
+        bar.close()
+        figures["wall_s"] = round(time.perf_counter() - started, 2)
+        figures["plots"] = [str(path) for path in module.plot(figures, out_dir)]
+        results[skill] = figures
+        checkpoint.write_text(json.dumps(results, indent=2) + "\n")
+    return results
+
+
+@bench_app.command("skills")
+def bench_skills(
+    skill: Annotated[list[str] | None, typer.Option(
+        "--skill", help=f"skill to benchmark (repeatable): {', '.join(SKILLS)}; default all")] = None,
+    quick: Annotated[bool, typer.Option(help="reduced trials (a smoke run, figures less certain)")] = False,
+    seed: Annotated[int, typer.Option(help="random seed of the simulator and the trial variations")] = 0,
+    out: Annotated[Path, typer.Option(help="folder for the PNG plots and skills.json")] = Path("out/skills"),
+    as_json: Annotated[bool, typer.Option("--json", help="print one JSON object only")] = False,
+) -> None:
+    """Walk speed and falls (run challenge), turn rate and turn-gain error, kick distance and direction,
+    stand-up success and time, on our simulator with the real agent. Writes PNG plots."""
+    chosen = skill or list(SKILLS)
+    unknown = [name for name in chosen if name not in SKILLS]
+    if unknown:
+        raise typer.BadParameter(f"unknown skill {', '.join(unknown)}; choose from {', '.join(SKILLS)}",
+                                 param_hint="--skill")
+    results = run_skill_benchmarks(chosen, quick, seed, out, show_progress=not as_json)
+    if as_json:
+        typer.echo(json.dumps(results))
+        return
+    rows: list[tuple[str, str]] = []
+    for name, figures in results.items():
+        _flatten(name, figures, rows)
+    width = max(len(key) for key, _ in rows)
+    for key, value in rows:
+        typer.echo(f"{key:<{width}}  {value}")
+    typer.echo(f"figures: {out / 'skills.json'}")
