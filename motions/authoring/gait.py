@@ -19,14 +19,15 @@ The gait (one family: forward, backward, sideways, turning, in place):
    torso soft), written as XML phases: ``start_*`` (stance, ramp-up), ``cycle_*`` (one stride = a left and
    a right step; ``next`` loops), ``stop_*`` (ramp-down to the stance). The last phase of the stride has
    ``finalize`` -> the stop and ``isFinal``; the stance phase is skipped when ``in_walk_position`` is set.
-   Hip yaw and hip pitch of the cycle phases carry ``computed`` walk-lean names, so the controller can
-   steer the walk (REFERENCE §7.2; ``agent.motion.dynamic.WalkLean``).
+   The swing leg's hip yaw, hip pitch and ankle pitch in the cycle phases carry ``computed`` walk-lean
+   names, so the controller can steer the walk (REFERENCE §7.2; ``agent.motion.dynamic.WalkLean``).
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
+from pathlib import Path
 
 from motions.authoring.common import (ANGLE_DECIMALS, ARMS, LEGS, ArmPose, FootPose, KeyframeSolver,
                                       targets_deg)
@@ -75,8 +76,9 @@ class GaitParams:
     """Duration of the stance phase that starts the motion [ms]."""
     stop_hold_ms: int = 200
     """Duration of the last stop phase (holding the stance) [ms]."""
-    lean_hip_yaw_deg: float = -8.0
-    """Walk-lean value written as the lean's scale hint (not played; the dynamic elements file decides)."""
+    swing_linear: float = 0.0
+    """Blend of the swing foot's travel profile: 0 = cycloid (zero speed at lift-off and touch-down), 1 =
+    linear (lowest peak speed; the hip joints' 6.14 rad/s limit caps the swing speed)."""
 
     @property
     def step_s(self) -> float:
@@ -86,6 +88,11 @@ class GaitParams:
     def speed_m_s(self) -> float:
         """Nominal forward speed [m/s]."""
         return self.step_length_m / self.step_s
+
+    @property
+    def side_speed_m_s(self) -> float:
+        """Nominal sideways speed [m/s], + = left (one opening per stride of two steps)."""
+        return -self.side_step_m / (2.0 * self.step_s)
 
 
 @dataclass(frozen=True)
@@ -168,7 +175,7 @@ def sample_steps(params: GaitParams, left: FootPose, right: FootPose, steps: lis
         for cycle in range(1, n + 1):
             u = cycle / n
             swing_phase = 0.0 if cycle <= ds else (cycle - ds) / (n - ds)
-            blend = _cycloid(swing_phase)
+            blend = (1.0 - params.swing_linear) * _cycloid(swing_phase) + params.swing_linear * swing_phase
             origin = start[step.side]
             swing = FootPose(origin.x_m + blend * (step.landing.x_m - origin.x_m),
                              origin.y_m + blend * (step.landing.y_m - origin.y_m),
@@ -223,13 +230,29 @@ def _phase(name: str, angles: dict[str, float], duration_ms: int, joints: tuple[
     return Keyframe(name, duration_ms / 1000.0, targets_deg(angles, joints), **attributes)  # type: ignore[arg-type]
 
 
-def _with_lean(keyframe: Keyframe) -> Keyframe:
-    """Mark the hip yaw and hip pitch targets of a cycle phase as walk-lean computed values."""
+#: Leg joints whose cycle targets carry walk-lean names: hip yaw-pitch (turns the swing foot outward, the
+#: stance then turns the body toward it), hip pitch and ankle pitch (the seed agent's lean, REFERENCE §7.2).
+LEAN_JOINTS = (1, 3, 5)
+
+
+def lean_side(cycle_index: int, params: GaitParams) -> str:
+    """The leg whose walk-lean values a cycle phase carries (the cycle starts with the left step): the
+    swinging leg, from its lift-off through the double support after its landing, so that its offsets
+    are set in the air and released only when the other foot lifts (a release in double support would
+    twist the robot on both soles)."""
+    n, ds = params.step_cycles, params.double_support_cycles
+    shifted = (cycle_index - ds) % (2 * n)
+    return "left" if shifted < n else "right"
+
+
+def _with_lean(keyframe: Keyframe, side: str) -> Keyframe:
+    """Mark the lean joints of ``side``'s leg in a cycle phase as ``{side}_walk_lean_{effector}`` computed
+    values: a left lean (+) changes the left leg around its swing, a right lean the right leg."""
+    prefix = side[0]
     targets = dict(keyframe.targets)
-    for side, prefix in (("left", "l"), ("right", "r")):
-        for joint, effector in ((f"{prefix}lj1", f"{prefix}le1"), (f"{prefix}lj3", f"{prefix}le3")):
-            target = targets[joint]
-            targets[joint] = JointTarget(target.angle_rad, f"{side}_walk_lean_{effector}")
+    for number in LEAN_JOINTS:
+        joint, effector = f"{prefix}lj{number}", f"{prefix}le{number}"
+        targets[joint] = JointTarget(targets[joint].angle_rad, f"{side}_walk_lean_{effector}")
     return replace(keyframe, targets=targets)
 
 
@@ -239,8 +262,12 @@ def ramp_scales(ramp_steps: int) -> list[float]:
 
 
 def build_walk(name: str, params: GaitParams, solver: KeyframeSolver | None = None,
-               header_comments: tuple[str, ...] = ()) -> Motion:
+               header_comments: tuple[str, ...] = (), measured: dict[str, float] | None = None) -> Motion:
     """The XML phase motion of a gait: stance, ramp-up, a cyclic stride, and a stop through ``finalize``.
+
+    Constants written into the file: ``speed_m_s`` (nominal forward speed; the controller's slowdown and
+    walk lean key on it), ``side_speed_m_s`` (nominal, + = left), ``step_s``, ``turn_per_stride_deg``, and
+    ``measured`` figures (e.g. ``measured_forward_m_s`` from the tuner's runs on the simulator).
 
     The start and the cycle come from one footstep plan (ramp, then full steps), so the last start phase
     leads into the cycle without a jump; the stop is planned from the cycle's end state.
@@ -286,12 +313,13 @@ def build_walk(name: str, params: GaitParams, solver: KeyframeSolver | None = No
         keyframe = _phase(f"cycle_{i:02d}", pose, ms, next=first_cycle if last else f"cycle_{i + 1:02d}",
                           is_final=True if last else None, finalize="stop_00" if last else None,
                           set_flag_false=STANCE_FLAG if i == 0 else None)
-        phases.append(_with_lean(keyframe))
+        phases.append(_with_lean(keyframe, lean_side(i, params)))
     for i, pose in enumerate(stop_poses):
         phases.append(_phase(f"stop_{i:02d}", pose, ms, next=f"stop_{i + 1:02d}"))
     phases.append(_phase("stop_hold", stance, params.stop_hold_ms, is_final=True, set_flag_true=STANCE_FLAG))
-    constants = {"speed_m_s": round(params.speed_m_s, 4), "step_s": round(params.step_s, 4),
-                 "turn_per_stride_deg": params.turn_step_deg, "side_per_stride_m": params.side_step_m}
+    constants = {"speed_m_s": round(params.speed_m_s, 4), "side_speed_m_s": round(params.side_speed_m_s, 4),
+                 "step_s": round(params.step_s, 4), "turn_per_stride_deg": params.turn_step_deg,
+                 **{key: round(value, 4) for key, value in (measured or {}).items()}}
     return Motion(name, phases, source_format=XML, first_phase="stance", constants=constants,
                   header_comments=header_comments)
 
@@ -305,5 +333,80 @@ def build_stance(name: str, params: GaitParams, solver: KeyframeSolver | None = 
     return Motion(name, [phase], source_format=XML, first_phase="stance", header_comments=header_comments)
 
 
-__all__ = ["ANGLE_DECIMALS", "GaitParams", "Sample", "Step", "build_stance", "build_walk", "plan_steps",
-           "ramp_scales", "sample_steps", "solve_samples", "stance_pose"]
+#: Motions written by ``python -m motions.authoring.gait`` (the stance first: walks start from it).
+MOTION_NAMES = ("stand", "walk_forward", "walk_backward", "walk_left", "walk_right")
+#: Section keys of the parameter file copied into a walk's constants (the tuner's measurements).
+MEASURED_KEYS = ("measured_forward_m_s", "measured_left_m_s")
+COMMAND = "python -m motions.authoring.gait"
+
+
+def build_named(name: str, params: GaitParams, header_comments: tuple[str, ...] = (),
+                measured: dict[str, float] | None = None, solver: KeyframeSolver | None = None) -> Motion:
+    """The motion ``name`` of MOTION_NAMES (``stand`` = the stance alone, else a walk)."""
+    if name == "stand":
+        return build_stance(name, params, solver, header_comments)
+    return build_walk(name, params, solver, header_comments, measured)
+
+
+def write_gait_files(params_path: Path | None = None, out_dir: Path | None = None,
+                     names: tuple[str, ...] = MOTION_NAMES) -> list[Path]:
+    """Generate the gait motions from the parameter file and write them as ``<name>.xml``.
+
+    Returns:
+        The paths written.
+
+    Raises:
+        ValueError: a bad parameter file or a motion missing from it; kinematics.IKError: a keyframe out of
+        reach.
+    """
+    import tomllib
+
+    from motions import save
+    from motions.authoring.common import FILES_DIR, header
+    from motions.authoring.gait_params import GAIT_PARAMS_PATH, load_gait_params
+
+    params_path = Path(params_path or GAIT_PARAMS_PATH)
+    out_dir = Path(out_dir or FILES_DIR)
+    table = load_gait_params(params_path)
+    raw = tomllib.loads(params_path.read_text(encoding="utf-8"))
+    missing = [name for name in names if name not in table]
+    if missing:
+        raise ValueError(f"{params_path}: no section for {missing}; sections: {sorted(table)}")
+    out_dir.mkdir(parents=True, exist_ok=True)
+    written = []
+    solver = KeyframeSolver()
+    for name in names:
+        params = table[name]
+        section = raw.get(name, {})
+        lines = header("motions.authoring.gait", params_path, name, params, COMMAND)
+        if section.get("provenance"):
+            lines = lines[:-1] + (f" Provenance: {section['provenance']} ".replace("--", "- -"),) + lines[-1:]
+        measured = {key: float(section[key]) for key in MEASURED_KEYS if key in section}
+        motion = build_named(name, params, lines, measured, solver)
+        path = out_dir / f"{name}.xml"
+        save(motion, path)
+        written.append(path)
+    return written
+
+
+def main(argv: list[str] | None = None) -> int:
+    """``python -m motions.authoring.gait [--params FILE] [--out DIR] [NAME ...]``."""
+    import argparse
+
+    parser = argparse.ArgumentParser(prog=COMMAND, description="Write the walk motions from the gait parameters.")
+    parser.add_argument("names", nargs="*", help=f"motions to write (default: {' '.join(MOTION_NAMES)})")
+    parser.add_argument("--params", type=Path, default=None, help="gait parameter file (motions/params/gait.toml)")
+    parser.add_argument("--out", type=Path, default=None, help="output folder (motions/files)")
+    args = parser.parse_args(argv)
+    for path in write_gait_files(args.params, args.out, tuple(args.names) or MOTION_NAMES):
+        print(path)
+    return 0
+
+
+__all__ = ["ANGLE_DECIMALS", "MOTION_NAMES", "STANCE_FLAG", "GaitParams", "Sample", "Step", "build_named",
+           "build_stance", "build_walk", "lean_side", "plan_steps", "ramp_scales", "sample_steps", "solve_samples",
+           "stance_pose", "write_gait_files"]
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
