@@ -1,0 +1,142 @@
+"""Who plays the ball, and where the others stand: decided by every player from its own beliefs.
+
+Why decentralised: the seed's coordinator (REFERENCE §7.10) needs a full say round (≈ 2 s) before an
+order arrives; each player already hears every teammate's position within one round (§7.9), so each can
+apply the same rule itself. The rule is §7.10's on-ball choice: cost = d + a·ϑ (d: distance to the ball
+[m], ϑ: how far the player must go around the ball to face the goal [deg], a = 0.01), the previous holder
+gets −1 (hysteresis, so two players do not swap the role every cycle). Teammates that said ``x`` (fallen,
+lost) or whose last report is older than ``REPORT_FRESH_S`` are left out; with equal costs the lower unum
+plays. The goalkeeper (unum 1) plays the ball only inside its own penalty area.
+
+All positions are in the team frame (own goal at −x), metres; angles in degrees where named ``_deg``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from agent.formation import beam_spot
+from agent.world_model import WorldModel
+
+#: Weight of the angle term of the on-ball cost [m/deg] (REFERENCE §7.10).
+ANGLE_WEIGHT_M_PER_DEG = 0.01
+#: Cost bonus of the current holder [m] (REFERENCE §7.10).
+HOLDER_BONUS_M = 1.0
+#: A teammate's report older than this is not used [s] (a full say round of 11 players is 0.66 s, §7.9).
+REPORT_FRESH_S = 3.0
+#: The own ball sighting is used while younger than this [s]; else a teammate's (c) report.
+BALL_FRESH_S = 2.0
+#: Opponent goal centre, team frame [m] (field 30 × 20, REFERENCE §4).
+OPPONENT_GOAL_M = (15.0, 0.0)
+#: Goalkeeper's guard line x [m] and half-width of its guard segment [m] (goal 2.1 m wide).
+KEEPER_X_M = -14.2
+KEEPER_HALF_WIDTH_M = 0.8
+#: Own penalty area, where the goalkeeper plays the ball itself: x below, |y| below [m] (REFERENCE §4).
+PENALTY_AREA_X_M = -13.2
+PENALTY_AREA_HALF_WIDTH_M = 3.0
+GOALKEEPER_UNUM = 1
+#: Support players stay at least this far from the ball [m].
+SUPPORT_CLEARANCE_M = 1.5
+#: Field bounds the support spots are kept inside, team frame [m]; field players stay out of the own
+#: penalty area (more than 3 defenders there is a foul, REFERENCE §4.5 "illegal defence").
+FIELD_X_MIN_M = PENALTY_AREA_X_M + 0.4
+FIELD_X_LIMIT_M = 14.0
+FIELD_Y_LIMIT_M = 9.5
+
+
+@dataclass(frozen=True, slots=True)
+class Candidate:
+    """A player that may take the ball: its unum and its team-frame position."""
+
+    unum: int
+    x_m: float
+    y_m: float
+
+
+def ball_belief(world: WorldModel) -> tuple[float, float] | None:
+    """The ball's team-frame position: the own sighting if fresh, else the freshest teammate (c) report."""
+    now = world.now_s
+    ball = world.ball
+    if ball is not None and ball.position is not None and ball.age_s(now) <= BALL_FRESH_S:
+        return ball.position
+    reports = [r for r in world.reports.values()
+               if r.ball is not None and r.active and now - r.heard_s <= REPORT_FRESH_S]
+    if not reports:
+        return None
+    return max(reports, key=lambda r: r.heard_s).ball
+
+
+def candidates(world: WorldModel) -> list[Candidate]:
+    """Self (if localized) and the teammates with a fresh position report, by unum."""
+    now = world.now_s
+    out: dict[int, Candidate] = {}
+    pose = world.pose
+    if pose is not None and world.localized and not world.body.fallen:
+        out[world.unum] = Candidate(world.unum, pose.x_m, pose.y_m)
+    for unum, report in world.reports.items():
+        if unum == world.unum or not report.active or report.position is None:
+            continue
+        if now - report.heard_s > REPORT_FRESH_S:
+            continue
+        out[unum] = Candidate(unum, *report.position)
+    return [out[u] for u in sorted(out)]
+
+
+def around_ball_deg(x_m: float, y_m: float, ball: tuple[float, float],
+                    goal: tuple[float, float] = OPPONENT_GOAL_M) -> float:
+    """Angle between the player→ball and ball→goal directions [deg], 0 = already behind the ball."""
+    to_ball = math.atan2(ball[1] - y_m, ball[0] - x_m)
+    to_goal = math.atan2(goal[1] - ball[1], goal[0] - ball[0])
+    return abs(math.degrees(math.remainder(to_goal - to_ball, math.tau)))
+
+
+def on_ball_cost(candidate: Candidate, ball: tuple[float, float], holder: int | None) -> float:
+    """REFERENCE §7.10's on-ball cost [m]; lower plays the ball."""
+    distance = math.hypot(ball[0] - candidate.x_m, ball[1] - candidate.y_m)
+    cost = distance + ANGLE_WEIGHT_M_PER_DEG * around_ball_deg(candidate.x_m, candidate.y_m, ball)
+    return cost - HOLDER_BONUS_M if candidate.unum == holder else cost
+
+
+def keeper_plays_ball(ball: tuple[float, float]) -> bool:
+    """The ball is in the own penalty area, where the goalkeeper clears it itself."""
+    return ball[0] < PENALTY_AREA_X_M and abs(ball[1]) < PENALTY_AREA_HALF_WIDTH_M
+
+
+def choose_on_ball(players: list[Candidate], ball: tuple[float, float], holder: int | None) -> int | None:
+    """The unum that plays the ball (None without candidates)."""
+    allowed = [p for p in players if p.unum != GOALKEEPER_UNUM or keeper_plays_ball(ball)]
+    if not allowed:
+        return None
+    return min(allowed, key=lambda p: (on_ball_cost(p, ball, holder), p.unum)).unum
+
+
+def support_spot(unum: int, ball: tuple[float, float] | None) -> tuple[float, float]:
+    """Where a player that does not play the ball stands [m]: its formation spot shifted with the ball
+    (forward when the ball is forward), kept in the field, out of the own penalty area, and
+    ``SUPPORT_CLEARANCE_M`` from the ball."""
+    home = beam_spot(unum)
+    if ball is None:
+        return home.x_m, home.y_m
+    x = home.x_m + 0.6 * (ball[0] + 5.0)
+    y = home.y_m + 0.3 * ball[1]
+    x = max(FIELD_X_MIN_M, min(FIELD_X_LIMIT_M, x))
+    y = max(-FIELD_Y_LIMIT_M, min(FIELD_Y_LIMIT_M, y))
+    dx, dy = x - ball[0], y - ball[1]
+    distance = math.hypot(dx, dy)
+    if distance < SUPPORT_CLEARANCE_M:
+        # Step back toward the own goal side of the ball.
+        if distance < 1e-6:
+            dx, dy, distance = -1.0, 0.0, 1.0
+        x, y = ball[0] + dx / distance * SUPPORT_CLEARANCE_M, ball[1] + dy / distance * SUPPORT_CLEARANCE_M
+    return x, y
+
+
+def keeper_spot(ball: tuple[float, float] | None) -> tuple[float, float]:
+    """The goalkeeper's guard spot [m]: on its line, following the ball's y within the goal's width."""
+    y = 0.0 if ball is None else max(-KEEPER_HALF_WIDTH_M, min(KEEPER_HALF_WIDTH_M, 0.3 * ball[1]))
+    return KEEPER_X_M, y
+
+
+__all__ = ["Candidate", "ball_belief", "candidates", "choose_on_ball", "keeper_plays_ball", "keeper_spot",
+           "on_ball_cost", "support_spot"]

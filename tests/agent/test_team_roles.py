@@ -1,0 +1,58 @@
+"""Role choice: REFERENCE §7.10's on-ball cost with holder hysteresis, goalkeeper rules, support spots."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from agent.team.roles import (FIELD_X_MIN_M, SUPPORT_CLEARANCE_M, Candidate, around_ball_deg, choose_on_ball,
+                              keeper_spot, on_ball_cost, support_spot)
+
+
+def test_the_nearest_player_behind_the_ball_plays_it():
+    ball = (0.0, 0.0)
+    players = [Candidate(2, -1.0, 0.0), Candidate(3, -3.0, 0.0), Candidate(4, 1.2, 0.0)]
+    # unum 4 is 0.2 m nearer-ish but in front of the ball: 180 deg around it costs 1.8 m.
+    assert around_ball_deg(1.2, 0.0, ball) == pytest.approx(180.0)
+    assert on_ball_cost(players[2], ball, None) == pytest.approx(1.2 + 1.8)
+    assert choose_on_ball(players, ball, holder=None) == 2
+
+
+def test_the_holder_keeps_the_ball_unless_another_is_clearly_better():
+    ball = (0.0, 0.0)
+    players = [Candidate(2, -1.5, 0.0), Candidate(3, -1.0, 0.0)]
+    assert choose_on_ball(players, ball, holder=None) == 3
+    assert choose_on_ball(players, ball, holder=2) == 2          # 0.5 m worse: keeps it (bonus 1 m)
+    players[0] = Candidate(2, -2.5, 0.0)
+    assert choose_on_ball(players, ball, holder=2) == 3          # 1.5 m worse: hands it over
+
+
+def test_equal_costs_go_to_the_lower_unum_so_every_player_agrees():
+    ball = (0.0, 0.0)
+    players = [Candidate(5, -1.0, 1.0), Candidate(4, -1.0, -1.0)]
+    assert choose_on_ball(players, ball, None) == 4
+    assert choose_on_ball(list(reversed(players)), ball, None) == 4
+
+
+def test_the_goalkeeper_plays_only_in_its_penalty_area():
+    keeper, field_player = Candidate(1, -14.0, 0.0), Candidate(2, -8.0, 0.0)
+    assert choose_on_ball([keeper, field_player], (-10.0, 0.0), None) == 2
+    assert choose_on_ball([keeper, field_player], (-13.8, 1.0), None) == 1
+    assert choose_on_ball([keeper], (0.0, 0.0), None) is None
+
+
+def test_support_spots_keep_clear_of_the_ball_and_out_of_the_own_penalty_area():
+    for unum in range(2, 12):
+        for ball in [(-14.0, 0.0), (0.0, 0.0), (10.0, 5.0), (-6.0, -8.0)]:
+            x, y = support_spot(unum, ball)
+            assert x >= FIELD_X_MIN_M - 1e-9
+            assert math.hypot(x - ball[0], y - ball[1]) >= SUPPORT_CLEARANCE_M - 1e-9 or x == FIELD_X_MIN_M
+    # Spots move up the field with the ball.
+    assert support_spot(9, (8.0, 0.0))[0] > support_spot(9, (-8.0, 0.0))[0]
+
+
+def test_the_keeper_follows_the_ball_within_the_goal():
+    assert keeper_spot(None) == (-14.2, 0.0)
+    assert keeper_spot((0.0, 2.0))[1] == pytest.approx(0.6)
+    assert keeper_spot((-10.0, -9.0))[1] == pytest.approx(-0.8)
