@@ -134,8 +134,12 @@ class TurnGain:
             raise ValueError(f"turn gain needs 0 < min_gain <= 1 and span_deg > 0, got {self.min_gain}, {self.span_deg}")
 
     def gain(self, turn_deg: float) -> float:
-        """Gain for a requested turn of ``turn_deg`` (sign ignored: the motion's side gives the direction)."""
-        excess = min(self.span_deg, abs(abs(turn_deg) - self.offset_deg))
+        """Gain for a requested turn of ``turn_deg`` (sign ignored: the motion's side gives the direction).
+
+        Below ``offset_deg`` the smallest gain is used, as documented; the 2012 code's ``|turn - 3|`` would
+        raise the gain again for smaller requests (a 1 deg request got the gain of 5 deg).
+        """
+        excess = min(self.span_deg, max(0.0, abs(turn_deg) - self.offset_deg))
         return self.min_gain + (1.0 - self.min_gain) * excess / self.span_deg
 
     def predicted_turn_deg(self, gain: float) -> float:
