@@ -27,9 +27,9 @@ from agent.protocol.effectors import (Beam, Init, InvalidAction, JointVelocity, 
                                       UnknownAction, parse_actions, split_joint_commands)
 from agent.protocol.errors import ProtocolError
 from agent.protocol.perceptors import GameState, Hear
-from agent.protocol.sense_template import (SPELLED_NUMBER, SenseTemplate, game_state_bytes, hear_bytes,
-                                           time_bytes)
-from sim.fixed2 import spell_fixed2
+from agent.protocol.sense_template import (PRINTF_NUMBER, SPELLED_NUMBER, SenseTemplate, game_state_bytes,
+                                           hear_bytes, time_bytes)
+from sim.fixed2 import SPELL_MIN_VALUES, spell_fixed2
 from sim.hearing import Hearing, Listener, Speaker
 from sim.perceptors import wire_joint_order
 from sim.physics_params import PhysicsParams
@@ -156,6 +156,8 @@ class SimEngine:
         self._hears: dict[int, list[Hear]] = {}
         self._bank_positions: dict[tuple[int, int], dict[str, int]] = {}
         self._see_writer = SeeWriter(VISIBLE_PARTS)
+        # The plain (GS ...) of the last cycle and what it was written from (it rarely changes).
+        self._game_state: tuple[tuple[Any, ...], bytes] = ((), b"")
         # Visible-part bodies of the robots with a team, for vision: (their keys, world layout, body ids).
         self._part_bodies: tuple[tuple[int, ...], int, np.ndarray] = ((), -1, np.zeros(0, dtype=np.intp))
 
@@ -373,14 +375,18 @@ class SimEngine:
         if not links:
             return {}
         values, frp_masks = world.perceptor_rows()
-        values = spell_fixed2(values).tolist()   # every float of every robot spelled at once
+        spelled = values.size >= SPELL_MIN_VALUES
+        # Every float of every robot spelled at once, or (few robots) handed to printf templates as floats.
+        values = spell_fixed2(values).tolist() if spelled else values.tolist()
         sees = self._vision_bytes(links)
         referee = self.referee
         out = {}
         try:
             now = time_bytes(self.time_s)
-            plain_state = game_state_bytes(GameState(None, None, referee.score_left, referee.score_right,
-                                                     referee.game_time_s, referee.play_mode))
+            state_key = (referee.score_left, referee.score_right, referee.game_time_s, referee.play_mode)
+            if state_key != self._game_state[0]:
+                self._game_state = (state_key, game_state_bytes(GameState(None, None, *state_key)))
+            plain_state = self._game_state[1]
         except ProtocolError as error:   # e.g. a play mode that is no atom: never crash the cycle
             for link in links:
                 link.perceptor_cycles += 1
@@ -397,7 +403,7 @@ class SimEngine:
                                                             referee.score_right, referee.game_time_s,
                                                             referee.play_mode))
                 hears = self._hears.get(link.key)
-                out[link.key] = _sense_template(link.robot_type or 0).format(
+                out[link.key] = _sense_template(link.robot_type or 0, spelled).format(
                     values[row], now, game_state, frp_masks[row], sees.get(link.key),
                     [hear_bytes(hear) for hear in hears] if hears else ())
             except ProtocolError as error:   # e.g. a team name that is no atom: never crash the cycle
@@ -464,18 +470,19 @@ class SimEngine:
 
 
 _EFFECTOR_INDEX: dict[int, dict[str, int]] = {}
-_SENSE_TEMPLATES: dict[int, SenseTemplate] = {}
+_SENSE_TEMPLATES: dict[tuple[int, bool], SenseTemplate] = {}
 
 
-def _sense_template(robot_type: int) -> SenseTemplate:
+def _sense_template(robot_type: int, spelled: bool = True) -> SenseTemplate:
     """The sense-message writer of a robot type: its joints in wire order, its foot sensors in spec order
-    (the order of `World.perceptor_rows`), numbers spelled beforehand (`sim.fixed2`)."""
-    template = _SENSE_TEMPLATES.get(robot_type)
+    (the order of `World.perceptor_rows`), numbers spelled beforehand (`sim.fixed2`) or, not ``spelled``,
+    floats for printf."""
+    template = _SENSE_TEMPLATES.get((robot_type, spelled))
     if template is None:
         from kinematics.spec import robot_spec
         feet = [sensor.name for sensor in robot_spec(robot_type).sensors if sensor.kind == "force"]
-        template = _SENSE_TEMPLATES[robot_type] = SenseTemplate(wire_joint_order(robot_type)[0], feet,
-                                                                number=SPELLED_NUMBER)
+        template = _SENSE_TEMPLATES[(robot_type, spelled)] = SenseTemplate(
+            wire_joint_order(robot_type)[0], feet, number=SPELLED_NUMBER if spelled else PRINTF_NUMBER)
     return template
 
 

@@ -20,11 +20,11 @@ from typing import NamedTuple
 import numpy as np
 
 from agent.protocol.perceptors import Polar, See, VisibleLine, VisibleObject, VisiblePlayer
-from agent.protocol.sense_template import (PLAYER_CLOSE_BYTES, SEE_CLOSE_BYTES, SEE_OPEN_BYTES, SEE_SEPARATOR_BYTES,
-                                           SPELLED_NUMBER, line_template, object_template, part_template,
-                                           player_template)
+from agent.protocol.sense_template import (PLAYER_CLOSE_BYTES, PRINTF_NUMBER, SEE_CLOSE_BYTES, SEE_OPEN_BYTES,
+                                           SEE_SEPARATOR_BYTES, SPELLED_NUMBER, line_template, object_template,
+                                           part_template, player_template)
 from sim.field import FIELD_LINES_M, LANDMARK_NAMES, LANDMARK_POSITIONS_M
-from sim.fixed2 import spell_fixed2
+from sim.fixed2 import SPELL_MIN_VALUES, spell_fixed2
 
 HALF_FOV_DEG = 60.0
 MIN_DISTANCE_M = 0.1
@@ -36,7 +36,8 @@ _TAN_HALF_FOV = math.tan(math.radians(HALF_FOV_DEG))
 _SIGMAS = np.array([0.0, SIGMA_THETA_DEG, SIGMA_PHI_DEG])
 _PARTS_PER_PLAYER = 5
 _FIXED_COUNT = len(LANDMARK_NAMES) + 1   # landmarks and the ball
-_SEPARATED_LINE = SEE_SEPARATOR_BYTES + line_template(SPELLED_NUMBER)
+_SEPARATED_LINE = {True: SEE_SEPARATOR_BYTES + line_template(SPELLED_NUMBER),
+                   False: SEE_SEPARATOR_BYTES + line_template(PRINTF_NUMBER)}
 _SEPARATOR_SIZE = len(SEE_SEPARATOR_BYTES)
 # Below this many object points (one observer, a few players) the field-of-view prefilter costs more than it saves.
 _PREFILTER_MIN_POINTS = 256
@@ -208,8 +209,8 @@ class SeeWriter:
 
     The item spellings come from agent.protocol.sense_template; the items of every point of the table (an
     object, or a part opening and/or closing its player) are built once per set of players and picked per
-    cycle by index; the numbers of all frames are spelled at once (`sim.fixed2`) and each frame is one
-    ``bytes % tuple``.
+    cycle by index; the numbers of all frames are spelled at once (`sim.fixed2`), or with few numbers (one
+    observer) left to printf templates, and each frame is one ``bytes % tuple``.
 
     Args:
         part_names: the 5 visible parts of a robot in the point table's order (sim.world.VISIBLE_PARTS).
@@ -218,7 +219,8 @@ class SeeWriter:
     def __init__(self, part_names: tuple[str, ...]) -> None:
         self.part_names = part_names
         self._players: tuple[tuple[str, int | None], ...] | None = None
-        self._items = np.zeros(0, dtype=object)
+        # Item tables for spelled numbers (True) and for printf (False), built for `_players`.
+        self._items = {True: np.zeros(0, dtype=object), False: np.zeros(0, dtype=object)}
 
     def frames(self, sighting: Sighting, players: tuple[tuple[str, int | None], ...]) -> list[bytes]:
         """One ``(See ...)`` per observer of ``sighting``.
@@ -227,7 +229,7 @@ class SeeWriter:
             players: (team name, unum) of the robots whose parts are in the point table, in its order.
         """
         if players != self._players:
-            self._items = _item_table(players, self.part_names)
+            self._items = {spelled: _item_table(players, self.part_names, spelled) for spelled in (True, False)}
             self._players = players
         seen_k, seen_p = sighting.seen_k, sighting.seen_p
         # A part opens its player when the previous seen point is not the same player's (or another
@@ -236,26 +238,34 @@ class SeeWriter:
         change = np.empty(owner.size + 1, dtype=bool)
         change[0] = change[-1] = True
         np.not_equal(owner[1:], owner[:-1], out=change[1:-1])
-        items = self._items[seen_p * 4 + change[:-1] * 2 + change[1:]].tolist()
-        values = spell_fixed2(sighting.values).ravel().tolist()        # every number spelled at once
-        line_values = spell_fixed2(sighting.line_values).ravel().tolist()
+        spelled = sighting.values.size + sighting.line_values.size >= SPELL_MIN_VALUES
+        items = self._items[spelled][seen_p * 4 + change[:-1] * 2 + change[1:]].tolist()
+        if spelled:   # every number spelled at once
+            values = spell_fixed2(sighting.values).ravel().tolist()
+            line_values = spell_fixed2(sighting.line_values).ravel().tolist()
+        else:
+            values, line_values = sighting.values.ravel().tolist(), sighting.line_values.ravel().tolist()
+        separated_line = _SEPARATED_LINE[spelled]
         object_rows, line_rows = sighting.object_rows.tolist(), sighting.line_rows.tolist()
         out = []
         for k in range(len(object_rows) - 1):
             a, b, c, d = object_rows[k], object_rows[k + 1], line_rows[k], line_rows[k + 1]
-            body = b"".join(items[a:b]) + _SEPARATED_LINE * (d - c)
+            body = b"".join(items[a:b]) + separated_line * (d - c)
             out.append((SEE_OPEN_BYTES + body[_SEPARATOR_SIZE:] + SEE_CLOSE_BYTES)
                        % (*values[3 * a:3 * b], *line_values[6 * c:6 * d]))
         return out
 
 
-def _item_table(players: tuple[tuple[str, int | None], ...], part_names: tuple[str, ...]) -> np.ndarray:
-    """Item template per (point, opens its player, closes its player), flattened as point * 4 + 2 open + close."""
-    rows = [[SEE_SEPARATOR_BYTES + object_template(name, SPELLED_NUMBER)] * 4 for name in LANDMARK_NAMES + ("B",)]
+def _item_table(players: tuple[tuple[str, int | None], ...], part_names: tuple[str, ...],
+                spelled: bool = True) -> np.ndarray:
+    """Item template per (point, opens its player, closes its player), flattened as point * 4 + 2 open + close;
+    numbers as spellings (``spelled``) or floats."""
+    number = SPELLED_NUMBER if spelled else PRINTF_NUMBER
+    rows = [[SEE_SEPARATOR_BYTES + object_template(name, number)] * 4 for name in LANDMARK_NAMES + ("B",)]
     for team, unum in players:
         opening = SEE_SEPARATOR_BYTES + player_template(team, unum)
         for part in part_names:
-            item = part_template(part, SPELLED_NUMBER)
+            item = part_template(part, number)
             rows.append([item, item + PLAYER_CLOSE_BYTES, opening + item, opening + item + PLAYER_CLOSE_BYTES])
     table = np.empty(4 * len(rows), dtype=object)
     table[:] = [item for row in rows for item in row]

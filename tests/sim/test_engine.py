@@ -195,6 +195,24 @@ def test_same_seed_same_bytes() -> None:
     assert transcript(11) != transcript(12)
 
 
+def test_spelled_and_printf_numbers_write_the_same_messages(monkeypatch: pytest.MonkeyPatch) -> None:
+    # Few robots' numbers go to printf templates, many robots' are spelled by look-up (sim.fixed2).
+    import sim.engine
+    import sim.vision
+
+    def transcript(spell_min_values: int) -> list[tuple[int, int, bytes]]:
+        monkeypatch.setattr(sim.engine, "SPELL_MIN_VALUES", spell_min_values)
+        monkeypatch.setattr(sim.vision, "SPELL_MIN_VALUES", spell_min_values)
+        host = InProcessHost(SimEngine(seed=5), record=True)
+        for team in "AB":
+            host.add(Scripted({0: b"(init (unum 0)(teamname %s))(syn)" % team.encode(),
+                               3: b"(he1 2.0)(lae1 -1.5)(say hi)(syn)"}))
+        host.run(30)
+        return host.stats.transcript
+    spelled = transcript(0)
+    assert len(spelled) > 50 and spelled == transcript(10 ** 9)
+
+
 def test_sync_readiness() -> None:
     sim = engine()
     key = sim.connect()

@@ -64,3 +64,21 @@ def test_the_field_of_view_prefilter_changes_nothing(monkeypatch: pytest.MonkeyP
         monkeypatch.undo()
         for field in ("seen_k", "seen_p", "values", "line_k", "line_values", "object_rows", "line_rows"):
             assert np.array_equal(getattr(filtered, field), getattr(plain, field)), field
+
+
+@pytest.mark.parametrize("spell_min_values", [0, 10 ** 9])
+def test_spelled_and_printf_numbers_write_the_same_bytes(monkeypatch: pytest.MonkeyPatch, spell_min_values: int) -> None:
+    # Few numbers go to printf templates, many are spelled by look-up (sim.fixed2): force each path on scenes
+    # that would take the other.
+    import sim.vision
+    for seed, observers, players in [(0, 1, 0), (1, 1, 1), (2, 7, 22)]:
+        cams, teams, ball = _scene(seed, observers, players)
+        typed = see(cams, ball, teams, np.random.default_rng(seed))
+        sighting = observe(np.stack([c.position_m for c in cams]), np.stack([c.rotation for c in cams]),
+                           np.stack([c.calibration_m for c in cams]), ball,
+                           np.vstack([t.parts_m for t in teams]) if teams else np.zeros((0, 3)),
+                           np.random.default_rng(seed))
+        monkeypatch.setattr(sim.vision, "SPELL_MIN_VALUES", spell_min_values)
+        written = SeeWriter(VISIBLE_PARTS).frames(sighting, tuple((t.team, t.unum) for t in teams))
+        monkeypatch.undo()
+        assert written == [format_sense(Sense(None, None, None, None, {}, see=frame)) for frame in typed]
