@@ -315,7 +315,8 @@ def build_walk(name: str, params: GaitParams, solver: KeyframeSolver | None = No
                           set_flag_false=STANCE_FLAG if i == 0 else None)
         phases.append(_with_lean(keyframe, lean_side(i, params)))
     for i, pose in enumerate(stop_poses):
-        phases.append(_phase(f"stop_{i:02d}", pose, ms, next=f"stop_{i + 1:02d}"))
+        following = f"stop_{i + 1:02d}" if i + 1 < len(stop_poses) else "stop_hold"
+        phases.append(_phase(f"stop_{i:02d}", pose, ms, next=following))
     phases.append(_phase("stop_hold", stance, params.stop_hold_ms, is_final=True, set_flag_true=STANCE_FLAG))
     constants = {"speed_m_s": round(params.speed_m_s, 4), "side_speed_m_s": round(params.side_speed_m_s, 4),
                  "step_s": round(params.step_s, 4), "turn_per_stride_deg": params.turn_step_deg,

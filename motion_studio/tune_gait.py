@@ -1,0 +1,267 @@
+"""Tune a walk's gait parameters on our simulator with CMA-ES, checkpointing every generation.
+
+Each candidate: GaitParams -> IK keyframes (``motions.authoring.gait``) -> the real agent plays the walk on
+our simulator (``motion_studio.walk_rollout``) in a few trials (a plain run, a sideways push, a forward
+push), each followed by a stop. The loss rewards speed along the walk's direction and punishes falls
+(REFERENCE §8.1: a fall costs 2 m), falls while stopping, sideways drift and heading change.
+
+Run::
+
+    python -m motion_studio.tune_gait walk_forward --generations 30 --workers 2 --write
+
+The checkpoint (JSON: CMA-ES state, every evaluation, the best so far) is rewritten after each generation;
+running the same command again resumes from it. ``--write`` puts the best parameters into
+``motions/params/gait.toml`` (section = motion name, with a provenance line and the measured speeds) and
+regenerates the motion file.
+"""
+
+from __future__ import annotations
+
+import argparse
+import datetime
+import json
+import time
+from collections.abc import Callable, Sequence
+from concurrent.futures import ProcessPoolExecutor
+from dataclasses import dataclass, fields, replace
+from pathlib import Path
+
+import numpy as np
+
+from agent.motion import MotionLibrary
+from kinematics.errors import IKError
+from motion_studio.cmaes import CMAES
+from motion_studio.walk_rollout import Push, WalkRun, run_walk
+from motions.authoring.gait import GaitParams, build_stance, build_walk, write_gait_files
+from motions.authoring.gait_params import (GAIT_PARAMS_PATH, dumps_gait_params, load_gait_params, provenance,
+                                           read_common, read_header)
+
+#: Direction of each walk in the robot frame (forward, left).
+DIRECTIONS: dict[str, tuple[float, float]] = {"walk_forward": (1.0, 0.0), "walk_backward": (-1.0, 0.0),
+                                              "walk_left": (0.0, 1.0), "walk_right": (0.0, -1.0)}
+#: Default checkpoint folder (outside the work tree).
+CHECKPOINT_DIR = Path("/tmp/nao3d-tune")
+
+
+@dataclass(frozen=True)
+class Dimension:
+    """One tuned parameter: GaitParams field, bounds, integer or not."""
+
+    name: str
+    low: float
+    high: float
+    integer: bool = False
+
+    def to_unit(self, value: float) -> float:
+        return min(1.0, max(0.0, (value - self.low) / (self.high - self.low)))
+
+    def from_unit(self, unit: float) -> float:
+        value = self.low + min(1.0, max(0.0, float(unit))) * (self.high - self.low)
+        return int(round(value)) if self.integer else round(value, 4)
+
+
+#: Search spaces: gait shape (every walk) and posture (the forward walk's, which the stance shares).
+SHAPE = (Dimension("step_height_m", 0.01, 0.05), Dimension("sway_m", 0.0, 0.04),
+         Dimension("sway_phase", -0.3, 0.3), Dimension("swing_linear", 0.0, 1.0),
+         Dimension("double_support_cycles", 0, 2, integer=True))
+POSTURE = (Dimension("torso_height_m", 0.30, 0.365), Dimension("torso_pitch_deg", 0.0, 25.0),
+           Dimension("torso_forward_m", -0.03, 0.04), Dimension("foot_spacing_m", 0.09, 0.14))
+SPACES: dict[str, tuple[Dimension, ...]] = {
+    "walk_forward": (Dimension("step_length_m", 0.04, 0.13),) + SHAPE + POSTURE + (Dimension("arm_swing_deg", 0, 30),),
+    "walk_backward": (Dimension("step_length_m", -0.09, -0.02),) + SHAPE + (Dimension("torso_pitch_deg", 0.0, 25.0),),
+    "walk_left": (Dimension("side_step_m", -0.08, -0.01), Dimension("step_length_m", -0.01, 0.01)) + SHAPE,
+    "walk_right": (Dimension("side_step_m", 0.01, 0.08), Dimension("step_length_m", -0.01, 0.01)) + SHAPE,
+}
+
+
+@dataclass(frozen=True)
+class Trial:
+    """One rollout of a candidate: walk ``duration_s`` with ``pushes``."""
+
+    duration_s: float
+    pushes: tuple[Push, ...] = ()
+
+
+def default_trials(motion: str, quick: bool = False) -> tuple[Trial, ...]:
+    """A plain run (20 s for the forward walk: the run challenge), a sideways push, a forward push."""
+    forward = motion == "walk_forward"
+    long_s = 20.0 if forward else 12.0
+    if quick:
+        return (Trial(6.0),)
+    return (Trial(long_s), Trial(10.0, (Push(4.0, left_m_s=0.25),)),
+            Trial(10.0, (Push(4.0, forward_m_s=0.2 if forward else -0.2), Push(7.0, left_m_s=-0.25))))
+
+
+def trial_score(run: WalkRun, direction: tuple[float, float]) -> dict[str, float]:
+    """Figures and the score of one trial (higher is better)."""
+    forward, left = run.displacement_m()
+    along = forward * direction[0] + left * direction[1]
+    across = abs(-forward * direction[1] + left * direction[0])
+    time_s = run.walk_time_s if not run.fell else max(run.walk_time_s, 10.0)
+    score = along / time_s
+    if run.fell:
+        score -= 2.0 / time_s + 0.5
+    if run.fell_stopping:
+        score -= 0.3
+    score -= 0.3 * across / max(time_s, 1.0) + 0.002 * abs(run.heading_change_deg)
+    return {"score": score, "along_m": along, "across_m": across, "time_s": run.walk_time_s, "fell": float(run.fell),
+            "fell_stopping": float(run.fell_stopping), "heading_deg": run.heading_change_deg}
+
+
+def evaluate(motion: str, params: GaitParams, trials: Sequence[Trial]) -> dict[str, object]:
+    """Loss (lower is better) and per-trial figures of one candidate; an IK failure is a large loss."""
+    try:
+        library = MotionLibrary()
+        library.add(build_walk(motion, params))
+        library.add(build_stance("stand", params))
+    except IKError as error:
+        return {"loss": 10.0, "error": str(error)[:200], "trials": []}
+    direction = DIRECTIONS[motion]
+    results = []
+    for trial in trials:
+        run = run_walk(library, motion, trial.duration_s, pushes=trial.pushes,
+                       x_limit_m=14.5 if direction[0] > 0 else None,
+                       position_m=(-13.5, 0.0) if direction[0] > 0 else (0.0, 0.0))
+        results.append(trial_score(run, direction))
+    loss = -float(np.mean([r["score"] for r in results]))
+    return {"loss": loss, "trials": [{k: round(v, 4) for k, v in r.items()} for r in results]}
+
+
+def _evaluate_packed(packed: tuple[str, dict, tuple[Trial, ...]]) -> dict[str, object]:
+    motion, values, trials = packed
+    return evaluate(motion, _params(values), trials)
+
+
+def _params(values: dict) -> GaitParams:
+    from motions.authoring.gait_params import _gait_values
+
+    return GaitParams(**_gait_values(values, "candidate"))
+
+
+def _as_dict(params: GaitParams) -> dict:
+    out = {}
+    for f in fields(params):
+        value = getattr(params, f.name)
+        out[f.name] = {g.name: getattr(value, g.name) for g in fields(value)} if f.name == "arm" else value
+    return out
+
+
+def tune(motion: str, base: GaitParams, dimensions: Sequence[Dimension], trials: Sequence[Trial], generations: int,
+         checkpoint: Path, workers: int = 1, sigma0: float = 0.15, popsize: int | None = None, seed: int = 0,
+         progress: Callable[[str], None] = print) -> dict:
+    """Run (or resume) CMA-ES from ``base``; returns the checkpoint data (``best`` = lowest loss)."""
+    if checkpoint.is_file():
+        data = json.loads(checkpoint.read_text())
+        if data.get("motion") != motion or [d.name for d in dimensions] != data.get("dimensions"):
+            raise ValueError(f"{checkpoint} belongs to another search ({data.get('motion')}, {data.get('dimensions')})")
+        strategy = CMAES.from_state(data["cmaes"])
+        progress(f"resumed {checkpoint} at generation {strategy.generation}")
+    else:
+        x0 = np.array([d.to_unit(getattr(base, d.name)) for d in dimensions])
+        strategy = CMAES.create(x0, sigma0, popsize, seed)
+        data = {"motion": motion, "dimensions": [d.name for d in dimensions], "base": _as_dict(base),
+                "evaluations": [], "best": None}
+        base_result = evaluate(motion, base, trials)
+        data["best"] = {"loss": base_result["loss"], "params": _as_dict(base), "result": base_result}
+        progress(f"base loss {base_result['loss']:.4f} {base_result['trials']}")
+    checkpoint.parent.mkdir(parents=True, exist_ok=True)
+    pool = ProcessPoolExecutor(workers) if workers > 1 else None
+    try:
+        while strategy.generation < generations:
+            started = time.monotonic()
+            candidates = strategy.ask()
+            params = [replace(base, **{d.name: d.from_unit(u) for d, u in zip(dimensions, x)}) for x in candidates]
+            packed = [(motion, _as_dict(p), tuple(trials)) for p in params]
+            results = list(pool.map(_evaluate_packed, packed) if pool else map(_evaluate_packed, packed))
+            strategy.tell([float(r["loss"]) for r in results])
+            for p, r in zip(params, results):
+                data["evaluations"].append({"generation": strategy.generation, "params": _as_dict(p), "result": r})
+                if r["loss"] < data["best"]["loss"]:
+                    data["best"] = {"loss": r["loss"], "params": _as_dict(p), "result": r}
+            data["cmaes"] = strategy.state()
+            tmp = checkpoint.with_suffix(".tmp")
+            tmp.write_text(json.dumps(data))
+            tmp.replace(checkpoint)
+            losses = sorted(float(r["loss"]) for r in results)
+            best = data["best"]
+            shown = {d.name: best["params"][d.name] for d in dimensions}
+            progress(f"gen {strategy.generation}/{generations} {time.monotonic() - started:.0f}s  "
+                     f"loss min {losses[0]:.4f} median {losses[len(losses) // 2]:.4f}  sigma {strategy.sigma:.3f}  "
+                     f"best {best['loss']:.4f} {shown} {best['result']['trials']}")
+    finally:
+        if pool:
+            pool.shutdown()
+    return data
+
+
+def write_best(motion: str, best: dict, command: str, params_path: Path = GAIT_PARAMS_PATH,
+               common_keys: Sequence[str] = ()) -> list[Path]:
+    """Put the best parameters into the parameter file (and ``common_keys`` into [common]), with the
+    measured steady speeds of a confirming run, then regenerate the motion files."""
+    table = load_gait_params(params_path)
+    common = read_common(params_path)
+    best_params = _params(best["params"])
+    if common_keys:
+        common = replace(common, **{k: getattr(best_params, k) for k in common_keys})
+    table[motion] = best_params
+    figures = measure(motion, best_params)
+    provenances = {name: provenance(params_path, name) for name in ["common", *table]}
+    date = datetime.date.today().isoformat()
+    provenances[motion] = (f"{command} on {date}: loss {best['loss']:.4f}; steady forward {figures['forward_m_s']:.3f} "
+                           f"m/s, left {figures['left_m_s']:.3f} m/s over {figures['time_s']:.0f} s, "
+                           f"fell {figures['fell']}")
+    if common_keys:
+        provenances["common"] = f"posture keys {', '.join(common_keys)} from the tuned {motion} ({date})"
+    text = dumps_gait_params(common, table, provenances, read_header(params_path))
+    # Measured figures go into the section as meta keys (copied into the motion's constants).
+    lines = text.splitlines()
+    at = lines.index(f"[{motion}]") + 2
+    lines[at:at] = [f"measured_forward_m_s = {figures['forward_m_s']:.4f}", f"measured_left_m_s = {figures['left_m_s']:.4f}"]
+    params_path.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    names = ("stand", motion) if common_keys else (motion,)
+    return write_gait_files(params_path, names=names)
+
+
+def measure(motion: str, params: GaitParams, duration_s: float = 20.0) -> dict[str, float]:
+    """Steady velocity of a plain run (for the motion file's measured constants)."""
+    library = MotionLibrary()
+    library.add(build_walk(motion, params))
+    forward = DIRECTIONS[motion][0] > 0
+    run = run_walk(library, motion, duration_s, position_m=(-13.5, 0.0) if forward else (0.0, 0.0),
+                   x_limit_m=14.5 if forward else None)
+    v_forward, v_left = run.steady_velocity_m_s()
+    return {"forward_m_s": v_forward, "left_m_s": v_left, "time_s": run.walk_time_s, "fell": run.fell}
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(prog="python -m motion_studio.tune_gait", description=__doc__.split("\n\n")[0])
+    parser.add_argument("motion", choices=sorted(SPACES))
+    parser.add_argument("--generations", type=int, default=30)
+    parser.add_argument("--workers", type=int, default=1)
+    parser.add_argument("--popsize", type=int, default=None)
+    parser.add_argument("--sigma", type=float, default=0.15, help="initial step in box units (0-1)")
+    parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--step-cycles", type=int, default=None, help="fix step_cycles (cycles of 20 ms per step)")
+    parser.add_argument("--checkpoint", type=Path, default=None)
+    parser.add_argument("--quick", action="store_true", help="one short trial per candidate (smoke test)")
+    parser.add_argument("--write", action="store_true", help="write the best into gait.toml and regenerate")
+    parser.add_argument("--common", action="store_true", help="with --write: the posture keys also go to [common]")
+    args = parser.parse_args(argv)
+    base = load_gait_params()[args.motion]
+    if args.step_cycles:
+        base = replace(base, step_cycles=args.step_cycles)
+    checkpoint = args.checkpoint or CHECKPOINT_DIR / f"{args.motion}_{base.step_cycles}.json"
+    data = tune(args.motion, base, SPACES[args.motion], default_trials(args.motion, args.quick), args.generations,
+                checkpoint, args.workers, args.sigma, args.popsize, args.seed)
+    print(f"best loss {data['best']['loss']:.4f}: {data['best']['params']}")
+    if args.write:
+        command = (f"python -m motion_studio.tune_gait {args.motion} --step-cycles {base.step_cycles} "
+                   f"--generations {args.generations} --seed {args.seed}")
+        keys = [d.name for d in POSTURE] if args.common else []
+        for path in write_best(args.motion, data["best"], command, common_keys=keys):
+            print(path)
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
