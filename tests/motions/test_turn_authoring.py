@@ -16,6 +16,7 @@ from agent.motion.library import default_library
 from kinematics.fk import NaoKinematics
 from motions.authoring.gait import stance_pose
 from motions.authoring.gait_params import load_gait_params
+from motions.authoring.common import FILES_DIR
 from motions.authoring.turn import (BASE_NAMES, PARAMS_PATH, TURN_NAMES, TurnParams, build_all, load_turn_params,
                                     turn_samples, write_files)
 
@@ -133,3 +134,17 @@ def test_bad_parameters_are_named(tmp_path):
     path.write_text("[turn]\nstep_cycles = 4\ndouble_support_cycles = 4\n")
     with pytest.raises(ValueError, match="double_support_cycles"):
         load_turn_params(path)
+
+
+def test_shipped_turn_files_match_their_parameters():
+    """The files in motions/files are what the generator makes of the current parameters (including the
+    walk's [stand] stance); if not: python -m motions.authoring.turn, then python -m motion_studio.tune_turn
+    --write (the gain curve belongs to the files)."""
+    expected = build_all(load_turn_params())
+    for name, motion in expected.items():
+        shipped = motions.load(FILES_DIR / f"{name}.motion")
+        assert len(shipped.keyframes) == len(motion.keyframes), f"{name}: regenerate the turn files"
+        for want, have in zip(motion.keyframes, shipped.keyframes):
+            for wire, target in want.targets.items():
+                assert have.targets[wire].angle_deg == pytest.approx(target.angle_deg, abs=0.011), \
+                    f"{name} {want.name} {wire}: regenerate the turn files (python -m motions.authoring.turn)"
