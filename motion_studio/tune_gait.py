@@ -63,7 +63,8 @@ class Dimension:
 #: Search spaces: gait shape (every walk) and posture (the forward walk's, which the stance shares).
 SHAPE = (Dimension("step_height_m", 0.01, 0.05), Dimension("sway_m", 0.0, 0.04),
          Dimension("sway_phase", -0.3, 0.3), Dimension("swing_linear", 0.0, 1.0),
-         Dimension("double_support_cycles", 0, 2, integer=True))
+         Dimension("double_support_cycles", 0, 2, integer=True), Dimension("toe_out_deg", 0.0, 6.0),
+         Dimension("ramp_steps", 1, 4, integer=True))
 POSTURE = (Dimension("torso_height_m", 0.30, 0.365), Dimension("torso_pitch_deg", 0.0, 25.0),
            Dimension("torso_forward_m", -0.03, 0.04), Dimension("foot_spacing_m", 0.09, 0.14))
 SPACES: dict[str, tuple[Dimension, ...]] = {

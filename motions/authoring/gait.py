@@ -76,6 +76,9 @@ class GaitParams:
     """Duration of the stance phase that starts the motion [ms]."""
     stop_hold_ms: int = 200
     """Duration of the last stop phase (holding the stance) [ms]."""
+    toe_out_deg: float = 0.0
+    """Each foot yawed outward by this [deg] (the hip yaw-pitch joints turn a foot outward only, so with
+    hip roll and deep pitch a straight foot can need an inward yaw beyond their 1° limit)."""
     swing_linear: float = 0.0
     """Blend of the swing foot's travel profile: 0 = cycloid (zero speed at lift-off and touch-down), 1 =
     linear (lowest peak speed; the hip joints' 6.14 rad/s limit caps the swing speed)."""
@@ -211,8 +214,11 @@ def solve_samples(params: GaitParams, samples: list[Sample], solver: KeyframeSol
     """Joint angles (wire -> rad) of each sample (IK for the legs, the arm pose for the arms)."""
     pitch = math.radians(params.torso_pitch_deg)
     poses = []
+    toe_out = math.radians(params.toe_out_deg)
     for sample in samples:
-        angles = dict(solver.solve(params.torso_height_m, sample.left, sample.right, pitch))
+        left = replace(sample.left, yaw_rad=sample.left.yaw_rad + toe_out)
+        right = replace(sample.right, yaw_rad=sample.right.yaw_rad - toe_out)
+        angles = dict(solver.solve(params.torso_height_m, left, right, pitch))
         angles.update(params.arm.angles_rad(*_arm_offsets(params, sample)))
         poses.append(angles)
     return poses
