@@ -58,12 +58,14 @@ class _TurnSkill(Skill):
         self.predicted_deg = 0.0
         """Sum of the turns the curve predicts for the motions started (+ = left) [deg]."""
         self._playing: MotionRequest | None = None
+        self._seen_playing = False
 
     def reset(self) -> None:
         super().reset()
         self.motions_played = 0
         self.predicted_deg = 0.0
         self._playing = None
+        self._seen_playing = False
 
     def _remaining_deg(self, world: WorldModel, curve: TurnGain) -> float | None:
         """Turn still missing (+ = left) [deg]; None = cannot tell yet (wait)."""
@@ -71,9 +73,13 @@ class _TurnSkill(Skill):
 
     def step(self, world: WorldModel, motion: MotionController) -> MotionRequest:
         self._observe(world)
-        if self._playing is not None and motion.motion_name == self._playing.motion:
-            return self._playing  # a Webots motion runs to its end; keep asking for it
-        self._playing = None
+        if self._playing is not None:
+            if motion.motion_name == self._playing.motion:
+                self._seen_playing = True
+                return self._playing  # a Webots motion runs to its end; keep asking for it
+            if not self._seen_playing:
+                return self._playing  # the controller is still leaving another motion (e.g. a walk's stop)
+            self._playing = None
         if self.done:
             return MotionRequest(None)
         curve = motion.dynamic.turn_gain
@@ -88,6 +94,7 @@ class _TurnSkill(Skill):
             return MotionRequest(None)
         part = split_turn(remaining, curve)[0]
         self._playing = MotionRequest(TURN_MOTIONS["left" if part > 0 else "right"], turn_deg=abs(part))
+        self._seen_playing = False
         self.motions_played += 1
         self.predicted_deg += predicted_turn_deg(part, curve)
         return self._playing

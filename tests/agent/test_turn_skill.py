@@ -54,12 +54,16 @@ def test_turn_to_face_is_done_within_the_tolerance():
 
 
 def test_turn_by_dead_reckoning_plays_the_planned_motions_only():
-    skill, controller = TurnBy(50.0, tolerance_deg=0.5, use_localization=False), _controller()
+    skill, dynamic = TurnBy(50.0, tolerance_deg=0.5, use_localization=False), _controller().dynamic
     requests = []
-    for _ in range(5):
-        request = skill.step(_world(None), controller)
+    state = SimpleNamespace(motion_name=None, dynamic=dynamic)
+    for _ in range(6):
+        request = skill.step(_world(None), state)
         if request.motion is not None:
             requests.append((request.motion, request.turn_deg))
+            state = SimpleNamespace(motion_name=request.motion, dynamic=dynamic)  # it plays one cycle ...
+            skill.step(_world(None), state)
+            state = SimpleNamespace(motion_name=None, dynamic=dynamic)  # ... and ends
     assert requests == [("turn_left", 25.0), ("turn_left", 25.0)] and skill.done
 
 
@@ -70,3 +74,18 @@ def test_turn_by_counts_the_gyro_across_a_localizer_jump():
     skill.step(_world(Pose2D(5.0, 1.0, math.radians(80.0)), math.radians(22.0)), controller)  # relocalized
     skill.step(_world(None, math.radians(30.0)), controller)  # pose lost: the gyro goes on
     assert skill.measured_deg == pytest.approx(30.0)
+
+
+def test_a_turn_waits_for_the_controller_to_leave_another_motion():
+    """While the controller still plays another motion, the pending turn is asked for again, not re-planned
+    (no extra motions counted, no extra predicted turn)."""
+    skill, controller = TurnBy(30.0, use_localization=False), _controller()
+    busy = SimpleNamespace(motion_name="walk_forward", dynamic=controller.dynamic)
+    first = skill.step(_world(None), busy)
+    for _ in range(10):
+        assert skill.step(_world(None), busy) == first
+    assert skill.motions_played == 1 and skill.predicted_deg == pytest.approx(30.0)
+    playing = SimpleNamespace(motion_name="turn_left", dynamic=controller.dynamic)
+    assert skill.step(_world(None), playing) == first
+    idle = SimpleNamespace(motion_name=None, dynamic=controller.dynamic)
+    assert skill.step(_world(None), idle).motion is None and skill.done
