@@ -84,6 +84,8 @@ class TurnParams:
     """Distance between the sole centres, side to side [m] (the walk's stance)."""
     arm: ArmPose = ArmPose()
     """Arm pose (the walk's stance)."""
+    toe_out_deg: float = 0.0
+    """Each foot turned outward by this in the stance [deg] (the walk's stance)."""
 
     def __post_init__(self) -> None:
         if self.step_cycles < 2 or not 0 <= self.double_support_cycles < self.step_cycles:
@@ -105,7 +107,7 @@ class TurnParams:
 
 
 #: Stance fields of TurnParams that come from the walk's stance (gait parameters) unless the turn sets them.
-STANCE_FIELDS = ("torso_height_m", "torso_pitch_deg", "torso_forward_m", "foot_spacing_m", "arm")
+STANCE_FIELDS = ("torso_height_m", "torso_pitch_deg", "torso_forward_m", "foot_spacing_m", "arm", "toe_out_deg")
 #: Key of the turn's section naming the gait section whose stance the turn uses.
 STANCE_KEY = "stance_section"
 
@@ -157,7 +159,7 @@ def walk_stance(section: str, gait_path: Path | None = None) -> dict[str, object
         raise ValueError(f"{gait_path}: no gait section [{section}] for the turn's stance; known: "
                          f"{', '.join(sorted(sections))}")
     gait = sections[section]
-    return {name: getattr(gait, name) for name in STANCE_FIELDS}
+    return {name: getattr(gait, name) for name in STANCE_FIELDS if hasattr(gait, name)}
 
 
 # ---- geometry ----------------------------------------------------------------------------------------
@@ -182,11 +184,12 @@ def turn_samples(params: TurnParams) -> list[TurnSample]:
     """
     half = params.foot_spacing_m / 2.0
     theta = math.radians(params.turn_deg)
-    start = {"left": FootPose(-half, 0.0), "right": FootPose(half, 0.0)}
+    toe_out = math.radians(params.toe_out_deg)
+    start = {"left": FootPose(-half, 0.0, 0.0, toe_out), "right": FootPose(half, 0.0, 0.0, -toe_out)}
     end = {}
     for side, foot in start.items():
         x, y = _rotated(foot.x_m, foot.y_m, theta)
-        end[side] = FootPose(x, y, 0.0, theta)
+        end[side] = FootPose(x, y, 0.0, foot.yaw_rad + theta)
     stance = _relative(start, 0.0, 0.0, params)
     samples = [stance] * (1 + params.settle_cycles)
     feet = dict(start)
@@ -208,7 +211,7 @@ def turn_samples(params: TurnParams) -> list[TurnSample]:
             samples.append(_relative(now, torso_yaw, sway, params))
         feet = dict(before)
         feet[swing_side] = landing
-    samples += [_relative(end, theta, 0.0, params)] * params.settle_cycles
+    samples += [_relative(end, theta, 0.0, params)] * params.settle_cycles  # mid-feet yaw = theta
     return samples
 
 

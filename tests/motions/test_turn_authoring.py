@@ -14,11 +14,11 @@ import pytest
 import motions
 from agent.motion.library import default_library
 from kinematics.fk import NaoKinematics
+from motions.authoring.common import FILES_DIR, KeyframeSolver
 from motions.authoring.gait import stance_pose
 from motions.authoring.gait_params import load_gait_params
-from motions.authoring.common import FILES_DIR
-from motions.authoring.turn import (BASE_NAMES, PARAMS_PATH, TURN_NAMES, TurnParams, build_all, load_turn_params,
-                                    turn_samples, write_files)
+from motions.authoring.turn import (BASE_NAMES, PARAMS_PATH, STANCE_FIELDS, TURN_NAMES, TurnParams, build_all,
+                                    load_turn_params, turn_samples, write_files)
 
 PARAMS = TurnParams(turn_deg=40.0, step_cycles=8, double_support_cycles=2, settle_cycles=1)
 
@@ -68,12 +68,11 @@ def test_right_turn_mirrors_left(built):
         assert kr.targets["rlj3"].angle_deg == pytest.approx(kl.targets["llj3"].angle_deg)
 
 
-def test_starts_and_ends_in_the_walk_stance(built):
-    stand = load_gait_params()["stand"]
-    params = replace(PARAMS, torso_height_m=stand.torso_height_m, torso_pitch_deg=stand.torso_pitch_deg,
-                     torso_forward_m=stand.torso_forward_m, foot_spacing_m=stand.foot_spacing_m, arm=stand.arm)
+@pytest.mark.parametrize("toe_out_deg", [0.0, 3.0])
+def test_starts_and_ends_in_the_walk_stance(toe_out_deg):
+    stand = replace(load_gait_params()["stand"], toe_out_deg=toe_out_deg)
+    params = replace(PARAMS, **{name: getattr(stand, name) for name in STANCE_FIELDS})
     turn = build_all(params)[TURN_NAMES["left"]]
-    from motions.authoring.common import KeyframeSolver
     stance = stance_pose(stand, KeyframeSolver())
     for keyframe in (turn.keyframes[0], turn.keyframes[-1]):
         for wire, target in keyframe.targets.items():
