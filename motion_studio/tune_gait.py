@@ -20,6 +20,7 @@ from __future__ import annotations
 import argparse
 import datetime
 import json
+import math
 import time
 from collections.abc import Callable, Sequence
 from concurrent.futures import ProcessPoolExecutor
@@ -203,7 +204,11 @@ def write_best(motion: str, best: dict, command: str, params_path: Path = GAIT_P
     common = read_common(params_path)
     best_params = _params(best["params"])
     if common_keys:
-        common = replace(common, **{k: getattr(best_params, k) for k in common_keys})
+        # The posture moves to [common]: every motion (the stance first) takes it, so walks start from and
+        # stop in the same stance; a walk that needs its own posture is tuned again afterwards.
+        moved = {k: getattr(best_params, k) for k in common_keys}
+        common = replace(common, **moved)
+        table = {name: replace(params, **moved) for name, params in table.items()}
     table[motion] = best_params
     figures = measure(motion, best_params)
     provenances = {name: provenance(params_path, name) for name in ["common", *table]}
@@ -217,9 +222,10 @@ def write_best(motion: str, best: dict, command: str, params_path: Path = GAIT_P
     # Measured figures go into the section as meta keys (copied into the motion's constants).
     lines = text.splitlines()
     at = lines.index(f"[{motion}]") + 2
-    lines[at:at] = [f"measured_forward_m_s = {figures['forward_m_s']:.4f}", f"measured_left_m_s = {figures['left_m_s']:.4f}"]
+    lines[at:at] = [f"measured_forward_m_s = {figures['forward_m_s']:.4f}", f"measured_left_m_s = {figures['left_m_s']:.4f}",
+                    f"measured_stop_m = {figures['stop_m']:.4f}"]
     params_path.write_text("\n".join(lines) + "\n", encoding="utf-8")
-    names = ("stand", motion) if common_keys else (motion,)
+    names = tuple(table) if common_keys else (motion,)
     return write_gait_files(params_path, names=names)
 
 
@@ -231,7 +237,10 @@ def measure(motion: str, params: GaitParams, duration_s: float = 20.0) -> dict[s
     run = run_walk(library, motion, duration_s, position_m=(-13.5, 0.0) if forward else (0.0, 0.0),
                    x_limit_m=14.5 if forward else None)
     v_forward, v_left = run.steady_velocity_m_s()
-    return {"forward_m_s": v_forward, "left_m_s": v_left, "time_s": run.walk_time_s, "fell": run.fell}
+    end = run.truths[run.walk_cycles - 1].torso_m[:2]
+    stop_m = math.dist(end, run.truths[-1].torso_m[:2]) if not run.fell else 0.0
+    return {"forward_m_s": v_forward, "left_m_s": v_left, "time_s": run.walk_time_s, "fell": run.fell,
+            "stop_m": stop_m}
 
 
 def main(argv: list[str] | None = None) -> int:
