@@ -1,10 +1,21 @@
-"""Stand up after a fall (REFERENCE §7.7): a fall is suspected from the gyro or the tilt, confirmed when the
-feet carry no weight and the accelerometer says the torso lies; the stand-up motion for the side the robot
-lies on plays; the foot pressure then says whether it worked, else it tries again.
+"""Stand up after a fall (REFERENCE §7.7): a fall is suspected from the gyro or the accelerometer, confirmed
+when the feet carry no weight (FRP) while the accelerometer says the torso lies still; the stand-up motion
+for the side the robot lies on plays; the foot pressure then says whether it worked, else it tries again.
 
-Thresholds (numbers, not tuned curves): the seed agent's 100 °/s gyro trigger; lying = gravity less than
-half along the torso's up axis; feet "carrying the robot" = mean FRP f_z above a third of its weight
-(4.6 kg · 9.81 / 3 ≈ 15 N, summed over both feet), measured over the confirmation windows below.
+Everything here reads the agent's world model only (GYR, ACC, FRP and the orientation filter's up axis).
+
+Thresholds (numbers, not tuned curves):
+
+* suspicion: the seed agent's 100 °/s gyro trigger (|gyro_y| + |gyro_z| in its axes = our x and y, the
+  axes a torso tips over about), an accelerometer spike (collisions, impacts), or a tilted torso (the
+  filter's up axis below REFERENCE §8.1's 0.6, or gravity less than half along the torso's own up axis);
+* confirmation: CONFIRM_CYCLES consecutive cycles of a lying accelerometer, feet carrying less than
+  FEET_LOADED_N and a quiet gyro (so the side is read once the robot has come to rest);
+* success: an upright torso on loaded feet for RECOVERY_CYCLES after the motion; a robot not upright within
+  CHECK_TIMEOUT_CYCLES (or lying again) tries again.
+
+Weight: 4.6071 kg for every robot type (REFERENCE §2.5), 45.2 N; standing loads the feet with all of it
+(22.6 N per foot, measured), lying with none (the soles touch the ground edge-on, FRP z ≈ 0).
 """
 
 from __future__ import annotations
@@ -15,23 +26,31 @@ from agent.motion import MotionController, MotionRequest
 from agent.skills.base import Skill
 from agent.world_model import WorldModel
 
+GRAVITY_M_S2 = 9.81
 #: |gyro x| + |gyro y| above this suggests a fall [deg/s] (seed agent: |gyro_y| + |gyro_z| > 100 in its axes).
 GYRO_TRIGGER_DEG_S = 100.0
+#: An accelerometer magnitude this far from g suggests a collision or an impact [m/s²].
+ACC_SPIKE_M_S2 = 0.8 * GRAVITY_M_S2
 #: Torso up-axis z below this suggests a fall (REFERENCE §8.1's fall criterion).
 UP_Z_TRIGGER = 0.6
 #: Gravity along the torso's own up axis below this fraction of g = lying.
 LYING_ACC_FRACTION = 0.5
-#: Feet carry the robot when their summed vertical force averages above this [N].
-FEET_LOADED_N = 15.0
+#: The summed vertical foot force of a robot standing on its feet is above this [N] (about 55 % of 45.2 N).
+FEET_LOADED_N = 25.0
+#: Gyro rate below which the robot counts as at rest for the side decision [deg/s].
+QUIET_GYRO_DEG_S = 60.0
 #: Cycles of evidence before a fall is confirmed / a recovery is accepted.
-CONFIRM_CYCLES = 6
+CONFIRM_CYCLES = 5
 RECOVERY_CYCLES = 15
-#: Torso up-axis z above this after the stand-up = upright.
+#: Cycles after a stand-up motion within which the robot must stand, else it tries again.
+CHECK_TIMEOUT_CYCLES = 50
+#: Longest wait for a quiet gyro before a retry reads the side anyway.
+SETTLE_CYCLES = 25
+#: Torso up-axis z above this = upright.
 UPRIGHT_UP_Z = 0.85
-GRAVITY_M_S2 = 9.81
 #: Motions by the side the robot lies on.
 STANDUP_MOTIONS = {"back": "standup_back", "front": "standup_front"}
-#: Motion that rolls a robot lying on its side onto its back (a torso twist with the arms).
+#: Optional motion that rolls a robot lying on its side onto its back (played when the library has it).
 SIDE_ROLL_MOTION = "roll_to_back"
 
 
@@ -43,18 +62,31 @@ def feet_force_n(world: WorldModel) -> float:
 def lying_side(world: WorldModel) -> str | None:
     """"back", "front", "side" or None (not lying), from the accelerometer (torso axes: x right, y forward).
 
-    Lying on the back the forward axis points up, so the proper acceleration has +g along y.
+    Lying on the back the forward axis points up, so the proper acceleration has +g along y; on the front,
+    -g. A reading far from g (an impact, a fall in progress) says nothing: None.
     """
     ax, ay, az = world.body.acc_m_s2
-    if abs(az) > LYING_ACC_FRACTION * GRAVITY_M_S2 or math.hypot(ax, ay, az) < 0.5 * GRAVITY_M_S2:
+    if abs(az) > LYING_ACC_FRACTION * GRAVITY_M_S2 or abs(math.hypot(ax, ay, az) - GRAVITY_M_S2) > 0.5 * GRAVITY_M_S2:
         return None
     if abs(ay) >= abs(ax):
         return "back" if ay > 0 else "front"
     return "side"
 
 
+def standup_side(world: WorldModel) -> str:
+    """"back" or "front": the stand-up to play, from the sign of gravity along the torso's forward axis
+    (a robot on its side or sitting leans one way or the other)."""
+    return "back" if world.body.acc_m_s2[1] > 0 else "front"
+
+
+def upright_on_feet(world: WorldModel) -> bool:
+    """Torso upright and the feet carrying the robot."""
+    return world.body.up_z > UPRIGHT_UP_Z and feet_force_n(world) >= FEET_LOADED_N
+
+
 class FallWatch:
-    """Possible fall (gyro or tilt), confirmed by no weight on the feet and a lying accelerometer."""
+    """Possible fall (gyro, accelerometer or tilt), confirmed by no weight on the feet and a lying, resting
+    accelerometer. ``fallen`` and ``side`` hold until :meth:`reset`."""
 
     def __init__(self) -> None:
         self.reset()
@@ -68,16 +100,19 @@ class FallWatch:
     def update(self, world: WorldModel) -> None:
         body = world.body
         gx, gy, _ = body.gyro_deg_s
-        if abs(gx) + abs(gy) > GYRO_TRIGGER_DEG_S or body.up_z < UP_Z_TRIGGER:
+        rate = abs(gx) + abs(gy)
+        acc_off_g = abs(math.hypot(*body.acc_m_s2) - GRAVITY_M_S2)
+        if (rate > GYRO_TRIGGER_DEG_S or acc_off_g > ACC_SPIKE_M_S2 or body.up_z < UP_Z_TRIGGER
+                or body.acc_m_s2[2] < LYING_ACC_FRACTION * GRAVITY_M_S2):
             self.suspected = True
         if not self.suspected or self.fallen:
             return
         side = lying_side(world)
-        if side is not None and feet_force_n(world) < FEET_LOADED_N:
+        if side is not None and feet_force_n(world) < FEET_LOADED_N and rate < QUIET_GYRO_DEG_S:
             self._evidence += 1
         else:
             self._evidence = 0
-            if body.up_z > UPRIGHT_UP_Z and feet_force_n(world) >= FEET_LOADED_N:
+            if upright_on_feet(world):
                 self.suspected = False  # a bump, not a fall
         if self._evidence >= CONFIRM_CYCLES:
             self.fallen, self.side = True, side
@@ -86,8 +121,9 @@ class FallWatch:
 class StandUp(Skill):
     """Play the stand-up for the side the robot lies on until the feet carry it upright.
 
-    ``done`` once the robot stands (FRP loaded and upright for RECOVERY_CYCLES after the motion);
-    ``attempts`` counts the motions started.
+    States: ``choose`` (once the gyro is quiet, read the side, start its motion) -> ``play`` (until the motion has ended) ->
+    ``check`` (upright on loaded feet for RECOVERY_CYCLES: ``done``; lying again or not upright within
+    CHECK_TIMEOUT_CYCLES: ``choose`` again). ``attempts`` counts the stand-up motions started.
     """
 
     name = "stand up"
@@ -99,40 +135,59 @@ class StandUp(Skill):
     def reset(self) -> None:
         super().reset()
         self.attempts = 0
+        self.sides: list[str] = []
+        """Side of each attempt, in order."""
         self._playing: str | None = None
         self._completed_before = 0
         self._upright_cycles = 0
+        self._check_cycles = 0
+        self._settle_cycles = 0
         self.state = "choose"
 
     def step(self, world: WorldModel, motion: MotionController) -> MotionRequest:
         if self.state == "choose":
+            if upright_on_feet(world):
+                self._enter_check()
+                return MotionRequest(None)
+            gx, gy, _ = world.body.gyro_deg_s
+            if abs(gx) + abs(gy) > QUIET_GYRO_DEG_S and self._settle_cycles < SETTLE_CYCLES:
+                self._settle_cycles += 1  # still tumbling: the side is not known yet
+                return MotionRequest(None)
+            self._settle_cycles = 0
             side = lying_side(world)
-            if side is None:
-                if world.body.up_z > UPRIGHT_UP_Z:
-                    self.state = "check"
-                    return MotionRequest(None)
-                side = "back" if world.body.acc_m_s2[1] > 0 else "front"
-            name = SIDE_ROLL_MOTION if side == "side" and SIDE_ROLL_MOTION in motion.library else \
-                STANDUP_MOTIONS["back" if side == "side" else side]
+            if side == "side" and SIDE_ROLL_MOTION in motion.library:
+                name = SIDE_ROLL_MOTION
+            else:
+                side = side if side in STANDUP_MOTIONS else standup_side(world)
+                name = STANDUP_MOTIONS[side]
+                self.attempts += 1
+                self.sides.append(side)
             self._playing = name
             self._completed_before = motion.completed[name]
-            self.attempts += 1 if name != SIDE_ROLL_MOTION else 0
             self.state = "play"
             return MotionRequest(name, interrupt=True)
         if self.state == "play":
             assert self._playing is not None
             if motion.completed[self._playing] > self._completed_before:
-                self.state = "choose" if self._playing == SIDE_ROLL_MOTION else "check"
-                self._upright_cycles = 0
+                if self._playing == SIDE_ROLL_MOTION:
+                    self.state = "choose"
+                else:
+                    self._enter_check()
                 return MotionRequest(None)
             return MotionRequest(self._playing)
         # check: the feet must carry an upright robot for a while, else try again
-        if world.body.up_z > UPRIGHT_UP_Z and feet_force_n(world) >= FEET_LOADED_N:
+        self._check_cycles += 1
+        if upright_on_feet(world):
             self._upright_cycles += 1
             if self._upright_cycles >= RECOVERY_CYCLES:
                 self.done = True
         else:
             self._upright_cycles = 0
-            if lying_side(world) is not None:
+            if lying_side(world) is not None or self._check_cycles >= CHECK_TIMEOUT_CYCLES:
                 self.state = "choose"
         return MotionRequest(None)
+
+    def _enter_check(self) -> None:
+        self.state = "check"
+        self._upright_cycles = 0
+        self._check_cycles = 0
