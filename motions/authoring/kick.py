@@ -99,8 +99,16 @@ class KickParams:
     windup_pitch_deg: float = -20.0
     """Kicking foot pitch at the windup [deg] (+ = toes up)."""
     windup_yaw_deg: float = -8.0
-    """Kicking foot yaw at the windup [deg] (+ = toes to the left; the right foot's toes turn out as the
-    leg swings back about its rolled hip, and turning them in would need hip yaw beyond its 1 deg limit)."""
+    """Kicking foot yaw at the windup relative to the torso's twist [deg] (+ = toes to the left): the right
+    foot's toes turn out as the leg swings back about its rolled hip, and turning them in would need hip
+    yaw beyond its 1 deg limit."""
+    windup_torso_yaw_deg: float = 0.0
+    """Torso yaw at the windup [deg] (- = twisted toward the kicking side, which pulls its hip back: the
+    support leg's hip yaw-pitch can turn the torso that way only); the strike untwists it to
+    ``strike_torso_yaw_deg``, so the pelvis rotation adds to the foot's speed. The kicking foot turns with
+    the twist (its yaw is ``windup_yaw_deg`` on top): its hip yaw-pitch cannot turn it back in."""
+    strike_torso_yaw_deg: float = 0.0
+    """Torso yaw from the swing to the follow-through [deg]."""
     windup_torso_pitch_deg: float = 0.0
     """Torso pitch added to the stance pitch from the windup to the follow-through [deg]."""
     swing_ms: int = 40
@@ -150,6 +158,7 @@ class Pose:
     torso_roll_deg: float = 0.0
     arm_offsets_deg: tuple[float, float] = (0.0, 0.0)
     torso_lift_m: float = 0.0
+    torso_yaw_deg: float = 0.0
 
 
 def stance_params(gait_path: Path = GAIT_PARAMS_PATH) -> GaitParams:
@@ -206,7 +215,9 @@ class PoseSolver:
     The IK's feet are hard constraints and each QP step is bounded, so a foot target far from the last
     solution is infeasible in one solve; the solver walks there through poses interpolated from the
     previous keyframe (at most ``STEP_M`` of foot travel each), then moves the torso's ground point until the
-    CoM lies over the pose's target (feet fixed in the ground frame).
+    CoM lies over the pose's target (feet fixed in the ground frame). A target beyond reach (leg length,
+    joint limits) is clamped to the farthest interpolated pose the IK meets, so that every parameter set
+    gives a motion (the tuner needs that) and a parameter means "toward here, as far as the leg goes".
 
     Args:
         stance: the walk stance (torso height, the torso's place ahead of the feet, arm pose).
@@ -215,18 +226,28 @@ class PoseSolver:
 
     STEP_M = 0.01
 
-    def __init__(self, stance: GaitParams, solver: KeyframeSolver | None = None) -> None:
+    def __init__(self, stance: GaitParams, solver: KeyframeSolver | None = None, clamp_to_reach: bool = True) -> None:
         self.stance = stance
         self.solver = solver or KeyframeSolver()
+        self.clamp_to_reach = clamp_to_reach
+        self.reached: list[float] = []
+        """Per solved pose, the fraction of the way from the previous pose that was reached (1 = all)."""
         self._last: Pose | None = None
         self._torso = np.zeros(2)
 
     def _solve_at(self, pose: Pose, torso: np.ndarray) -> dict[str, float]:
-        targets = {"torso": PoseTarget((0.0, 0.0, self.stance.torso_height_m + pose.torso_lift_m),
-                                       torso_rotation(math.radians(pose.torso_pitch_deg),
-                                                      math.radians(pose.torso_roll_deg)))}
+        yaw = math.radians(pose.torso_yaw_deg)
+        c, s = math.cos(yaw), math.sin(yaw)
+        yaw_rotation = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+        rotation = yaw_rotation @ torso_rotation(math.radians(pose.torso_pitch_deg), math.radians(pose.torso_roll_deg))
+        targets = {"torso": PoseTarget((0.0, 0.0, self.stance.torso_height_m + pose.torso_lift_m), rotation)}
         for name, foot in (("lfoot", pose.left), ("rfoot", pose.right)):
             targets[name] = PoseTarget((foot.x_m - torso[0], foot.y_m - torso[1], foot.z_m), foot.rotation())
+        # The arms are written from the arm pose, so the IK's CoM must see them there (no task moves them).
+        robot = self.solver.ik.robot
+        for wire, angle in self.stance.arm.angles_rad(*pose.arm_offsets_deg).items():
+            robot.set_joint(wire, angle)
+        robot.update_kinematics()
         result = self.solver.ik.solve(targets, position_tol_m=TORSO_TOLERANCE_M,
                                       rotation_tol_rad=math.radians(TORSO_TOLERANCE_DEG))
         worst_foot = max(result.residuals[name][0] for name in ("lfoot", "rfoot"))
@@ -236,36 +257,64 @@ class PoseSolver:
 
     def solve(self, pose: Pose) -> dict[str, float]:
         """Joint angles (wire -> rad) for ``pose`` (the torso's ground point stays at the mid-feet point
-        when ``pose.com_xy_m`` is None).
+        when ``pose.com_xy_m`` is None). With ``clamp_to_reach``, a pose beyond reach is replaced by the
+        farthest pose on the way to it that the IK meets (``reached`` records the fraction of the way).
 
         Raises:
-            kinematics.IKError: a pose out of reach. ValueError: the CoM does not converge.
+            kinematics.IKError: a pose out of reach (without ``clamp_to_reach``, or not even its start).
+            ValueError: the CoM does not converge.
         """
         start = self._last
         torso = self._torso.copy()
-        if start is not None:
+        if start is None:
+            torso = np.array([(pose.left.x_m + pose.right.x_m) / 2.0, self.stance.torso_forward_m])
+            candidates = [(1.0, pose)]
+        else:
             travel = max(_distance(start.left, pose.left), _distance(start.right, pose.right))
             steps = max(1, math.ceil(travel / self.STEP_M))
+            reachable = 0
             for k in range(1, steps):
-                self._solve_at(_blend(start, pose, k / steps), torso)
-        else:
+                try:
+                    self._solve_at(_blend(start, pose, k / steps), torso)
+                except IKError:
+                    if not self.clamp_to_reach:
+                        raise
+                    break
+                reachable = k
+            else:
+                reachable = steps
+            candidates = [(k / steps, _blend(start, pose, k / steps)) for k in range(reachable, -1, -1)]
+        error: Exception | None = None
+        for fraction, candidate in candidates:
+            saved = self.solver.ik.robot.state.q.copy()
+            try:
+                angles, torso_at = self._solve_over_com(candidate, torso)
+            except IKError as failure:
+                error = failure
+                self.solver.ik.robot.state.q = saved
+                self.solver.ik.robot.update_kinematics()
+                if not self.clamp_to_reach:
+                    raise
+                continue
+            self._last, self._torso = candidate, torso_at
+            self.reached.append(fraction)
+            angles.update(self.stance.arm.angles_rad(*pose.arm_offsets_deg))
+            return angles
+        assert error is not None  # the loop ran at least once: candidates is never empty
+        raise error
+
+    def _solve_over_com(self, pose: Pose, torso: np.ndarray) -> tuple[dict[str, float], np.ndarray]:
+        """Solve ``pose`` moving the torso until the CoM lies over ``pose.com_xy_m``; (angles, torso point)."""
+        if pose.com_xy_m is None:
             torso = np.array([(pose.left.x_m + pose.right.x_m) / 2.0, self.stance.torso_forward_m])
+            return dict(self._solve_at(pose, torso)), torso
         for _ in range(COM_ITERATIONS):
             angles = self._solve_at(pose, torso)
-            if pose.com_xy_m is None:
-                torso = np.array([(pose.left.x_m + pose.right.x_m) / 2.0, self.stance.torso_forward_m])
-                angles = self._solve_at(pose, torso)
-                break
             error = np.asarray(pose.com_xy_m) - (self.solver.com_m(angles)[:2] + torso)
             if float(np.hypot(*error)) < COM_TOLERANCE_M:
-                break
+                return dict(angles), torso
             torso = torso + error
-        else:
-            raise ValueError(f"CoM did not converge to {pose.com_xy_m} within {COM_ITERATIONS} iterations")
-        self._last, self._torso = pose, torso
-        angles = dict(angles)
-        angles.update(self.stance.arm.angles_rad(*pose.arm_offsets_deg))
-        return angles
+        raise ValueError(f"CoM did not converge to {pose.com_xy_m} within {COM_ITERATIONS} iterations")
 
 
 def _distance(a: FootPose, b: FootPose) -> float:
@@ -281,7 +330,8 @@ def _blend(a: Pose, b: Pose, u: float) -> Pose:
     return Pose(_blend_foot(a.right, b.right, u), _blend_foot(a.left, b.left, u), b.com_xy_m,
                 a.torso_pitch_deg + u * (b.torso_pitch_deg - a.torso_pitch_deg),
                 a.torso_roll_deg + u * (b.torso_roll_deg - a.torso_roll_deg), b.arm_offsets_deg,
-                a.torso_lift_m + u * (b.torso_lift_m - a.torso_lift_m))
+                a.torso_lift_m + u * (b.torso_lift_m - a.torso_lift_m),
+                a.torso_yaw_deg + u * (b.torso_yaw_deg - a.torso_yaw_deg))
 
 
 def kick_poses(params: KickParams, stance: GaitParams) -> list[tuple[str, int, Pose]]:
@@ -296,7 +346,8 @@ def kick_poses(params: KickParams, stance: GaitParams) -> list[tuple[str, int, P
     air_x = half + params.kick_x_offset_m
     lifted = FootPose(air_x, 0.0, params.lift_height_m)
     windup = FootPose(air_x, params.windup_back_m, params.windup_height_m,
-                      yaw_rad=math.radians(params.windup_yaw_deg), pitch_rad=math.radians(params.windup_pitch_deg))
+                      yaw_rad=math.radians(params.windup_torso_yaw_deg + params.windup_yaw_deg),
+                      pitch_rad=math.radians(params.windup_pitch_deg))
     via = FootPose(air_x, params.swing_forward_m, params.swing_height_m,
                    pitch_rad=math.radians(params.swing_pitch_deg))
     strike = FootPose(air_x, params.strike_forward_m, params.strike_height_m,
@@ -304,16 +355,17 @@ def kick_poses(params: KickParams, stance: GaitParams) -> list[tuple[str, int, P
     swing = params.arm_swing_deg
     lift = params.torso_lift_m
 
-    def pose(foot: FootPose, pitch: float, arms: tuple[float, float] = (0.0, 0.0)) -> Pose:
-        return Pose(foot, left, com, pitch, roll, arms, lift)
+    def pose(foot: FootPose, pitch: float, arms: tuple[float, float] = (0.0, 0.0), yaw: float = 0.0) -> Pose:
+        return Pose(foot, left, com, pitch, roll, arms, lift, yaw)
 
+    twist, untwist = params.windup_torso_yaw_deg, params.strike_torso_yaw_deg
     poses = [("shift", params.shift_ms, pose(home, base_pitch)),
              ("lift", params.lift_ms, pose(lifted, base_pitch)),
-             ("windup", params.windup_ms, pose(windup, lean, (-swing, swing)))]
+             ("windup", params.windup_ms, pose(windup, lean, (-swing, swing), twist))]
     if params.swing_ms > 0:
-        poses.append(("swing", params.swing_ms, pose(via, lean)))
-    poses += [("strike", params.strike_ms, pose(strike, lean, (swing, -swing))),
-              ("follow", params.follow_ms, pose(strike, lean, (swing, -swing))),
+        poses.append(("swing", params.swing_ms, pose(via, lean, yaw=untwist)))
+    poses += [("strike", params.strike_ms, pose(strike, lean, (swing, -swing), untwist)),
+              ("follow", params.follow_ms, pose(strike, lean, (swing, -swing), untwist)),
               ("retract", params.retract_ms, pose(lifted, base_pitch)),
               ("land", params.land_ms, pose(home, base_pitch))]
     return poses
