@@ -72,6 +72,7 @@ class MotorBank:
         self._no_bias = np.zeros(0)
         self._held_limit = np.zeros(0)     # 80 % of the bound: a saturated motor stays saturated above it
         self._check_limit = np.zeros(0)    # the bound with the re-solve tolerance
+        self._least_remaining = np.zeros(0)
         self._damping_written: np.ndarray | None = None   # the gains last written to the model
 
     # ---- robots --------------------------------------------------------------------------------------
@@ -162,6 +163,7 @@ class MotorBank:
         self._no_bias = np.zeros(self.target.size)
         self._held_limit = 0.8 * self.max_torque
         self._check_limit = self.max_torque * (1.0 + self.params.motor_torque_tolerance)
+        self._least_remaining = self.max_torque / self.params.motor_kv   # a capped gain stays <= kv
         self._damping_written = None   # a recompiled model has the spec's damping
 
     def predict(self, model: mujoco.MjModel, data: mujoco.MjData) -> None:
@@ -199,7 +201,7 @@ class MotorBank:
         else:
             free_motion = np.abs(error - h * (np.sign(needed) * limit - load) / inertia)
             remaining = np.where(was_capped, np.abs(error), free_motion)
-            self.gain = np.where(capped, limit / np.maximum(remaining, limit / kv), kv)
+            self.gain = np.where(capped, limit / np.maximum(remaining, self._least_remaining), kv)
         self._write(model, data)
 
     def _write(self, model: mujoco.MjModel, data: mujoco.MjData) -> None:
@@ -233,7 +235,7 @@ class MotorBank:
         at_stop = ((torque > 0) & (angle >= self.max_rad - _STOP_BAND_RAD)) | \
             ((torque < 0) & (angle <= self.min_rad + _STOP_BAND_RAD))
         kv = self.params.motor_kv
-        stuck = limit / np.maximum(np.abs(self.target - self.start_velocity), limit / kv)
+        stuck = limit / np.maximum(np.abs(self.target - self.start_velocity), self._least_remaining)
         if not (over & ~at_stop).any():
             self.gain = np.where(over, stuck, self.gain)
             self.applied = np.where(over, np.sign(torque) * limit, torque)

@@ -19,7 +19,7 @@ from __future__ import annotations
 import logging
 from collections import Counter
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 
@@ -50,6 +50,18 @@ VISION_INTERVAL = 3
 #: Errors logged per agent at WARNING before the rest go to DEBUG (a broken agent must not flood the log).
 LOGGED_ERRORS_PER_AGENT = 20
 _SCENES = {"rsg/agent/nao/nao.rsg": False, "rsg/agent/nao/nao_hetero.rsg": True}
+
+
+class _JointCommands(NamedTuple):
+    """The joint commands of one usual message (see `SimEngine.receive`): names and velocities [rad/s]."""
+
+    names: tuple[str, ...]
+    values: list[float]
+
+
+_MISSING = object()
+#: Name orders whose motor-bank positions are kept (agents send one order; the cache is cleared past this).
+_USUAL_POSITIONS_KEPT = 256
 
 
 @dataclass
@@ -155,6 +167,7 @@ class SimEngine:
         self._outbox: dict[int, bytes] = {}
         self._hears: dict[int, list[Hear]] = {}
         self._bank_positions: dict[tuple[int, int], dict[str, int]] = {}
+        self._usual_bank_positions: dict[tuple[int, int, tuple[str, ...]], np.ndarray | None] = {}
         self._see_writer = SeeWriter(VISIBLE_PARTS)
         # The plain (GS ...) of the last cycle and what it was written from (it rarely changes).
         self._game_state: tuple[tuple[Any, ...], bytes] = ((), b"")
@@ -193,7 +206,7 @@ class SimEngine:
         if joints is not None:
             names, values, syn = joints
             if names:
-                link.pending.append(dict(zip(names, values)))
+                link.pending.append(_JointCommands(tuple(names), values))
             link.synced = link.synced or syn
             return
         try:
@@ -243,14 +256,25 @@ class SimEngine:
     def _apply_actions(self) -> list[tuple[AgentLink, Beam]]:
         beams: list[tuple[AgentLink, Beam]] = []
         speakers: list[Speaker] = []
-        motor_index: list[int] = []
+        motor_index: list[int] = []        # bank positions and velocities of the general path
         motor_value: list[float] = []
+        index_arrays: list[np.ndarray] = []   # the usual path: one cached position array per message
+        value_lists: list[float] = []
         for link in list(self.agents.values()):
-            pending, link.pending = link.pending, []
+            pending = link.pending
+            if not pending:
+                continue
+            link.pending = []
+            if len(pending) == 1 and type(pending[0]) is _JointCommands:   # the usual cycle: one joint message
+                positions = self._usual_positions(link, pending[0].names)
+                if positions is not None:
+                    index_arrays.append(positions)
+                    value_lists += pending[0].values
+                    continue
             joints: dict[str, float] = {}
             for action in pending:
-                if type(action) is dict:   # joint commands of a usual message (see `receive`)
-                    joints.update(action)
+                if type(action) is _JointCommands:   # joint commands of a usual message (see `receive`)
+                    joints.update(zip(action.names, action.values))
                 elif isinstance(action, JointVelocity):
                     if not action.finite:
                         self._error(link, f"non-finite value for {action.effector} ignored")
@@ -277,8 +301,11 @@ class SimEngine:
             if joints:
                 self._joints(link, joints, motor_index, motor_value)
         if motor_index:
-            self.world.motors.command_many(np.array(motor_index), np.array(motor_value), self.world.data.qpos,
-                                           self.world.time_s)
+            index_arrays.append(np.array(motor_index, dtype=np.intp))
+            value_lists += motor_value
+        if index_arrays:
+            self.world.motors.command_many(index_arrays[0] if len(index_arrays) == 1 else np.concatenate(index_arrays),
+                                           np.array(value_lists), self.world.data.qpos, self.world.time_s)
         if speakers:
             listeners = [Listener(link.key, link.team or "", link.side or "",
                                   tuple(self.world.torso_position(link.key)))
@@ -326,6 +353,25 @@ class SimEngine:
         self.world.set_team(link.key, assignment.side, assignment.unum)
         x, y, z = assignment.position_m
         self.world.place_robot(link.key, x, y, assignment.heading_deg, z)
+
+    def _usual_positions(self, link: AgentLink, names: tuple[str, ...]) -> np.ndarray | None:
+        """Motor-bank positions of a usual message's joints (cached per robot type, bank block and name order), or
+        None when `_joints` must take it: no robot yet, a name twice, or an effector the robot type lacks."""
+        robot = self.world.by_key.get(link.key)
+        if robot is None:
+            return None
+        start = self.world.motors.blocks[link.key].start
+        key = (robot.robot_type, start, names)
+        positions = self._usual_bank_positions.get(key, _MISSING)
+        if positions is _MISSING:
+            effectors = _effector_index(robot.robot_type)
+            positions = None
+            if len(set(names)) == len(names) and all(name in effectors for name in names):
+                positions = np.array([start + effectors[name] for name in names], dtype=np.intp)
+            if len(self._usual_bank_positions) >= _USUAL_POSITIONS_KEPT:   # odd agents vary the order
+                self._usual_bank_positions.clear()
+            self._usual_bank_positions[key] = positions
+        return positions
 
     def _joints(self, link: AgentLink, values: dict[str, float], index: list[int], velocity: list[float]) -> None:
         """Collect one agent's joint commands as motor-bank positions (applied together afterwards)."""

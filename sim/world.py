@@ -481,6 +481,8 @@ class World:
             found = {(robots[r].side, robots[r].unum) for r in owner[robot_rows].max(axis=1).tolist()
                      if robots[r].side is not None}
             self._ball_touchers = sorted(found)  # type: ignore[arg-type]
+        if len(robots) < 2:   # no pair to find
+            return
         first, second = owner[:, 0], owner[:, 1]
         pair_rows = (first >= 0) & (second >= 0) & (first != second)
         if np.count_nonzero(pair_rows):

@@ -10,7 +10,7 @@ import pytest
 from agent.protocol.sense import parse_sense
 from sim.engine import FrozenReferee, SimEngine
 from sim.inprocess import InProcessHost
-from tests.sim.scripted import Scripted, engine, run_until
+from tests.sim.scripted import SCENE, Scripted, engine, run_until
 
 INIT = b"(init (unum 0)(teamname Mine))(syn)"
 
@@ -166,6 +166,33 @@ def test_bad_input_is_counted_and_never_raises() -> None:
     sim.disconnect(999)
     out = sim.step()
     assert key in out and out[key].startswith(b"(time (now ")
+
+
+def test_usual_joint_messages_set_targets_as_the_general_path() -> None:
+    # Joint-only messages take a cached fast path; odd ones (a joint the type lacks, a name twice, two messages
+    # in one cycle) must give what the general rules give: known joints applied, the last value wins.
+    sim = engine()
+    key = sim.connect()
+    sim.receive(key, SCENE)
+    sim.step()
+    motors = sim.world.motors
+    start = motors.blocks[key].start
+    index = {j.effector: start + i for i, j in enumerate(sim.world.by_key[key].spec.joints)}
+    sim.receive(key, b"(he1 1.5)(lae1 -0.5)(syn)")
+    sim.step()
+    assert motors.target[index["he1"]] == 1.5 and motors.target[index["lae1"]] == -0.5
+    errors = sim.errors[key]
+    sim.receive(key, b"(he1 0.25)(lle7 1.0)(syn)")               # type 0 has no toes
+    sim.step()
+    assert motors.target[index["he1"]] == 0.25 and sim.errors[key] == errors + 1
+    sim.receive(key, b"(he2 0.5)(he1 1.0)(he2 -0.75)")           # a name twice: the last value
+    sim.step()
+    assert motors.target[index["he2"]] == -0.75 and motors.target[index["he1"]] == 1.0
+    sim.receive(key, b"(he1 0.5)(lae2 0.5)")                     # two messages in one cycle: the later wins
+    sim.receive(key, b"(he1 -0.5)(syn)")
+    sim.step()
+    assert motors.target[index["he1"]] == -0.5 and motors.target[index["lae2"]] == 0.5
+    assert sim.errors[key] == errors + 1
 
 
 def test_disconnect_frees_the_number_and_removes_the_robot() -> None:
