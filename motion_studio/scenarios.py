@@ -90,8 +90,14 @@ class Scenario:
     def place_ball(self, position_m: tuple[float, float]) -> None:
         self.world.set_ball((position_m[0], position_m[1], 0.042))
 
-    def lay_down(self, side: str, yaw_deg: float = 0.0) -> None:
-        """Put the robot on its ``back`` or ``front`` on the ground, joints as they are, at rest."""
+    def lay_down(self, side: str, yaw_deg: float = 0.0, twist_deg: float = 0.0) -> None:
+        """Put the robot on its ``back`` or ``front`` on the ground, joints as they are, at rest.
+
+        ``twist_deg`` turns it about its own long (up) axis first, so that it lies partly on a side
+        (+ = its right side lower when lying on the back).
+        """
+        if side not in ("back", "front"):
+            raise ValueError(f"side must be 'back' or 'front', got {side!r}")
         world, robot = self.world, self.world.by_key[self.key]
         position = world.torso_position(self.key)
         q = world.data.qpos
@@ -99,10 +105,12 @@ class Scenario:
         # Body forward axis +y; lying on the back = rotated +90° about the body x axis (chest up).
         pitch = math.pi / 2 if side == "back" else -math.pi / 2
         yaw = math.radians(yaw_deg - 90.0)
+        twist = math.radians(twist_deg)
         qyaw = np.array([math.cos(yaw / 2), 0.0, 0.0, math.sin(yaw / 2)])
         qpitch = np.array([math.cos(pitch / 2), math.sin(pitch / 2), 0.0, 0.0])
+        qtwist = np.array([math.cos(twist / 2), 0.0, 0.0, math.sin(twist / 2)])
         q[a:a + 3] = (position[0], position[1], 0.12)
-        q[a + 3:a + 7] = _quat_mul(qyaw, qpitch)
+        q[a + 3:a + 7] = _quat_mul(_quat_mul(qyaw, qpitch), qtwist)
         world.data.qvel[robot.root_dof:robot.root_dof + 6] = 0.0
         import mujoco
         mujoco.mj_kinematics(world.model, world.data)
