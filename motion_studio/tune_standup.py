@@ -1,0 +1,324 @@
+"""Tune a stand-up's parameters on our simulator with CMA-ES, checkpointing every generation.
+
+Each candidate: StandUpParams -> keyframes (``motions.authoring.standup``) -> the real agent plays the motion
+on our simulator (``motion_studio.scenarios.Scenario``) from a few lying starts (the robot laid down from
+the walk stance at a seeded yaw, nudged by a seeded push and spin, left to settle). The loss of a start is
+the time from the motion's start until the robot stands for good (torso above 0.30 m, up axis z above 0.9,
+feet carrying the robot), or, if it never does, 6 s plus how far it stayed from standing (at the end and at
+its best moment). Penalties: a torso turned upside down (a flip is fragile), the server's self-collision
+rule firing (it would freeze joints in a match, REFERENCE §4.5), a diverging simulation (counted as a
+failure). The candidate's loss is the mean over the starts.
+
+Run::
+
+    python -m motion_studio.tune_standup standup_front --generations 60 --write
+
+The checkpoint (JSON: CMA-ES state, the best so far) is rewritten after each generation; running the same
+command again resumes from it. ``--write`` puts the best parameters into ``motions/params/standup.toml``
+(with a provenance line) and regenerates the motion files.
+"""
+
+from __future__ import annotations
+
+import argparse
+import datetime
+import json
+import math
+import random
+import time
+from concurrent.futures import ProcessPoolExecutor
+from dataclasses import dataclass, replace
+from functools import lru_cache
+from pathlib import Path
+
+import numpy as np
+
+from agent.motion import MotionController, MotionLibrary, default_library, load_dynamic_params
+from agent.skills.base import PlayMotion
+from motion_studio.cmaes import CMAES
+from motion_studio.scenarios import Scenario
+from motions.authoring.standup import (PARAMS_PATH, STANDUPS, GroundPose, StandUpParams, build_standup,
+                                       dumps_section, load_standup_params, read_meta, stance_params, write_all)
+from motions.model import Motion
+
+CHECKPOINT_DIR = Path("/tmp/nao3d-tune")
+CYCLE_S = 0.02
+#: Standing for the loss: torso centre height [m], up axis z, summed foot force [N], for HOLD_S.
+STAND_Z_M = 0.30
+STAND_UP_Z = 0.9
+STAND_FEET_N = 30.0
+HOLD_S = 0.5
+#: A rollout lasts the motion plus this, at most MAX_S [s].
+AFTER_S = 1.2
+MAX_S = 5.0
+#: Cycles in the walk stance before the lay-down; cycles lying before the motion starts.
+STANCE_CYCLES = 30
+SETTLE_CYCLES = 15
+#: Loss terms.
+FAIL_LOSS = 6.0
+INVERTED_UP_Z = -0.45
+INVERTED_LOSS = 3.0
+SELF_COLLISION_LOSS = 0.5
+SELF_COLLISION_CAP = 6
+
+
+@dataclass(frozen=True)
+class Dimension:
+    """One tuned parameter: a dotted path (``crouch_ms``, ``ground.1.knee_deg``), bounds, integer or not."""
+
+    path: str
+    low: float
+    high: float
+    integer: bool = False
+
+    def to_unit(self, value: float) -> float:
+        return min(1.0, max(0.0, (value - self.low) / (self.high - self.low)))
+
+    def from_unit(self, unit: float) -> float:
+        value = self.low + min(1.0, max(0.0, float(unit))) * (self.high - self.low)
+        return int(round(value)) if self.integer else round(value, 3)
+
+
+#: Bounds of the ground-phase joints (left side, SimSpark degrees; inside the joint limits) and durations.
+GROUND_BOUNDS: dict[str, tuple[float, float, bool]] = {
+    "duration_ms": (60, 600, True), "hip_yaw_pitch_deg": (-89.0, 0.0, False), "hip_roll_deg": (-20.0, 40.0, False),
+    "hip_pitch_deg": (-24.0, 99.0, False), "knee_deg": (-129.0, 0.0, False), "ankle_pitch_deg": (-44.0, 74.0, False),
+    "shoulder_pitch_deg": (-119.0, 119.0, False), "shoulder_roll_deg": (-0.5, 94.0, False),
+    "elbow_yaw_deg": (-119.0, 119.0, False), "elbow_roll_deg": (0.0, 89.0, False),
+}
+#: Bounds of the crouch / rise parameters.
+POSE_BOUNDS: dict[str, tuple[float, float, bool]] = {
+    "crouch_pitch_deg": (0.0, 45.0, False), "crouch_height_m": (0.26, 0.32, False),
+    "crouch_com_forward_m": (-0.02, 0.05, False), "crouch_shoulder_pitch_deg": (-119.0, 90.0, False),
+    "crouch_ms": (100, 600, True), "rise_com_forward_m": (-0.02, 0.04, False), "rise_ms": (100, 600, True),
+    "stance_ms": (200, 600, True),
+}
+
+
+def dimensions(params: StandUpParams) -> list[Dimension]:
+    """Every tuned parameter of a stand-up with its bounds (ankle roll stays as it is)."""
+    dims = [Dimension(name, *bounds) for name, bounds in POSE_BOUNDS.items()]
+    for index in range(len(params.ground)):
+        dims += [Dimension(f"ground.{index}.{name}", *bounds) for name, bounds in GROUND_BOUNDS.items()]
+    return dims
+
+
+def get_value(params: StandUpParams, path: str) -> float:
+    parts = path.split(".")
+    if parts[0] == "ground":
+        return float(getattr(params.ground[int(parts[1])], parts[2]))
+    return float(getattr(params, path))
+
+
+def with_values(params: StandUpParams, values: dict[str, float]) -> StandUpParams:
+    """A copy of ``params`` with the dotted-path values replaced."""
+    top = {k: v for k, v in values.items() if not k.startswith("ground.")}
+    ground = list(params.ground)
+    for path, value in values.items():
+        if path.startswith("ground."):
+            _, index, name = path.split(".")
+            ground[int(index)] = replace(ground[int(index)], **{name: value})
+    return replace(params, ground=tuple(ground), **top)
+
+
+@dataclass(frozen=True)
+class Start:
+    """A lying start: yaw [deg], torso push [m/s] and spin [rad/s] right after the lay-down."""
+
+    yaw_deg: float
+    push_m_s: tuple[float, float, float]
+    spin_rad_s: tuple[float, float, float]
+
+
+def default_starts(count: int = 4, seed: int = 1) -> tuple[Start, ...]:
+    """The first start plain, then seeded yaws with pushes up to 0.3 m/s and spins up to 1 rad/s."""
+    rng = random.Random(f"tune_standup/{seed}")
+    starts = [Start(0.0, (0.0, 0.0, 0.0), (0.0, 0.0, 0.0))]
+    for _ in range(count - 1):
+        angle = rng.uniform(-math.pi, math.pi)
+        push = rng.uniform(0.0, 0.3)
+        spin = tuple(round(rng.uniform(-0.6, 0.6), 3) for _ in range(3))
+        starts.append(Start(round(rng.uniform(-180.0, 180.0), 1),
+                            (round(push * math.cos(angle), 3), round(push * math.sin(angle), 3), 0.0), spin))  # type: ignore[arg-type]
+    return tuple(starts)
+
+
+@dataclass
+class Rollout:
+    """What one start gave."""
+
+    time_s: float | None
+    """From the motion's start until the robot stands for good [s]; None = it did not."""
+    final_score: float
+    best_score: float
+    """Standing-ness in [0, 1] (torso height and up axis) at the end / at its best 0.2 s."""
+    min_up_z: float
+    self_collisions: int
+    diverged: bool
+
+    @property
+    def loss(self) -> float:
+        loss = self.time_s if self.time_s is not None else \
+            FAIL_LOSS + 3.0 * (1.0 - self.final_score) + 3.0 * (1.0 - self.best_score)
+        if self.diverged:
+            return FAIL_LOSS + 6.0
+        if self.min_up_z < INVERTED_UP_Z:
+            loss += INVERTED_LOSS
+        return loss + SELF_COLLISION_LOSS * min(self.self_collisions, SELF_COLLISION_CAP)
+
+
+@lru_cache(maxsize=1)
+def _stand_motion() -> Motion:
+    """The shipped walk stance (read once per process)."""
+    return default_library(0).get("stand")
+
+
+def rollout(motion: Motion, side: str, start: Start, seed: int = 0) -> Rollout:
+    """Play ``motion`` on a robot laid on ``side`` from ``start`` (the real agent, no fall recovery)."""
+    import mujoco
+
+    from sim.rules.self_collision import colliding_pairs
+
+    library = MotionLibrary({"stand": _stand_motion(), motion.name: motion})
+    scenario = Scenario(PlayMotion("stand"), seed=seed, recover_falls=False,
+                        controller=MotionController(library, load_dynamic_params(), 0))
+    scenario.run(STANCE_CYCLES)
+    scenario.lay_down(side, start.yaw_deg)
+    scenario.push(start.push_m_s, start.spin_rad_s)
+    scenario.run(SETTLE_CYCLES)
+    scenario.set_skill(PlayMotion(motion.name))
+    data = scenario.world.data
+    warnings = data.warning[mujoco.mjtWarning.mjWARN_BADQACC].number
+    cycles = round(min(MAX_S, motion.duration_s + AFTER_S) / CYCLE_S)
+    scores, standing, min_up, collisions = [], [], 1.0, 0
+    for cycle in range(cycles):
+        truth = scenario.run(1)[0]
+        if data.warning[mujoco.mjtWarning.mjWARN_BADQACC].number != warnings:
+            return Rollout(None, 0.0, 0.0, -1.0, collisions, True)
+        if cycle % 2 == 0 and colliding_pairs(0, scenario.engine.robot_body_poses()[0][3], 0.04):
+            collisions += 1
+        feet = sum(float(np.linalg.norm(force)) for _, force in scenario.world.foot_forces(scenario.key).values())
+        min_up = min(min_up, truth.up_z)
+        scores.append((min(1.0, max(0.0, truth.torso_m[2] / 0.34)) + min(1.0, max(0.0, truth.up_z))) / 2.0)
+        standing.append(truth.torso_m[2] > STAND_Z_M and truth.up_z > STAND_UP_Z and feet > STAND_FEET_N)
+    first = len(standing)
+    while first > 0 and standing[first - 1]:
+        first -= 1
+    held = len(standing) - first >= round(HOLD_S / CYCLE_S)
+    window = np.convolve(scores, np.ones(10) / 10, mode="valid")
+    return Rollout(round(first * CYCLE_S, 2) if held else None, float(np.mean(scores[-25:])),
+                   float(window.max()) if window.size else 0.0, min_up, collisions, False)
+
+
+def evaluate(section: str, params: StandUpParams, starts: tuple[Start, ...]) -> dict[str, object]:
+    """Loss and per-start figures of one candidate (a pose out of reach is a failed candidate)."""
+    side = STANDUPS[section]
+    try:
+        motion = build_standup(section, params, side, stance_params())
+    except ValueError as error:
+        return {"loss": 2 * FAIL_LOSS + 6.0, "error": str(error)}
+    runs = [rollout(motion, side, start, seed=i) for i, start in enumerate(starts)]
+    losses = [run.loss for run in runs]
+    return {"loss": float(np.mean(losses)), "losses": [round(v, 3) for v in losses],
+            "times_s": [run.time_s for run in runs], "self_collisions": [run.self_collisions for run in runs]}
+
+
+def _evaluate_packed(packed: tuple[str, dict, tuple[Start, ...]]) -> dict[str, object]:
+    section, values, starts = packed
+    base = load_standup_params()[section]
+    return evaluate(section, with_values(base, values), starts)
+
+
+def tune(section: str, base: StandUpParams, generations: int, starts: tuple[Start, ...], sigma: float = 0.1,
+         popsize: int | None = None, workers: int = 1, checkpoint: Path | None = None, seed: int = 0,
+         log=print) -> dict:
+    """CMA-ES over :func:`dimensions` around ``base``; returns the best {"loss", "values", "result"}."""
+    dims = dimensions(base)
+    x0 = np.array([d.to_unit(get_value(base, d.path)) for d in dims])
+    state = json.loads(checkpoint.read_text()) if checkpoint and checkpoint.is_file() else None
+    if state is not None:
+        es = CMAES.from_state(state["cmaes"])
+        best = state["best"]
+        log(f"resumed at generation {es.generation}, best loss {best['loss']:.3f}")
+    else:
+        es = CMAES.create(x0, sigma, popsize, seed)
+        first = evaluate(section, base, starts)
+        best = {"loss": first["loss"], "values": {d.path: get_value(base, d.path) for d in dims}, "result": first}
+        log(f"start loss {best['loss']:.3f} {first.get('times_s')}")
+    pool = ProcessPoolExecutor(workers) if workers > 1 else None
+    try:
+        while es.generation < generations:
+            started = time.perf_counter()
+            candidates = es.ask()
+            values = [{d.path: d.from_unit(u) for d, u in zip(dims, x)} for x in candidates]
+            packed = [(section, v, starts) for v in values]
+            results = list(pool.map(_evaluate_packed, packed)) if pool else [_evaluate_packed(p) for p in packed]
+            losses = [float(r["loss"]) for r in results]
+            es.tell(losses)
+            i = int(np.argmin(losses))
+            if losses[i] < best["loss"]:
+                best = {"loss": losses[i], "values": values[i], "result": results[i]}
+            log(f"generation {es.generation}: min {min(losses):.3f} median {float(np.median(losses)):.3f} "
+                f"best {best['loss']:.3f} {best['result'].get('times_s')} sigma {es.sigma:.3f} "
+                f"({time.perf_counter() - started:.0f} s)")
+            if checkpoint is not None:
+                checkpoint.parent.mkdir(parents=True, exist_ok=True)
+                checkpoint.write_text(json.dumps({"section": section, "cmaes": es.state(), "best": best}))
+    finally:
+        if pool is not None:
+            pool.shutdown()
+    return best
+
+
+def write_best(section: str, params: StandUpParams, provenance: str, measured: str = "",
+               path: Path = PARAMS_PATH) -> None:
+    """Rewrite ``section`` of the parameter file (other sections and the header comments kept)."""
+    text = path.read_text(encoding="utf-8")
+    header_lines = []
+    for line in text.splitlines():
+        if not line.startswith("#") and line.strip():
+            break
+        header_lines.append(line)
+    sections = load_standup_params(path)
+    sections[section] = params
+    parts = ["\n".join(header_lines).rstrip() + "\n"]
+    for name, value in sections.items():
+        meta = read_meta(path, name)
+        if name == section:
+            meta = {"provenance": provenance, **({"measured": measured} if measured else {})}
+        parts.append(dumps_section(name, value, meta))
+    path.write_text("\n".join(parts), encoding="utf-8")
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("section", choices=sorted(STANDUPS), help="stand-up to tune")
+    parser.add_argument("--generations", type=int, default=40)
+    parser.add_argument("--sigma", type=float, default=0.1, help="initial CMA-ES step (unit box)")
+    parser.add_argument("--popsize", type=int, default=None)
+    parser.add_argument("--starts", type=int, default=4, help="lying starts per candidate")
+    parser.add_argument("--workers", type=int, default=1)
+    parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--checkpoint", type=Path, default=None, help="default /tmp/nao3d-tune/<section>.json")
+    parser.add_argument("--write", action="store_true", help="write the best parameters and regenerate the files")
+    args = parser.parse_args(argv)
+    base = load_standup_params()[args.section]
+    checkpoint = args.checkpoint or CHECKPOINT_DIR / f"{args.section}.json"
+    starts = default_starts(args.starts)
+    best = tune(args.section, base, args.generations, starts, args.sigma, args.popsize, args.workers, checkpoint,
+                args.seed)
+    print(json.dumps(best, indent=1))
+    if args.write:
+        params = with_values(base, best["values"])
+        date = datetime.date.today().isoformat()
+        provenance = (f"tuned by python -m motion_studio.tune_standup {args.section} (CMA-ES, {args.generations} "
+                      f"generations, {len(starts)} lying starts) on {date}")
+        times = best["result"].get("times_s")
+        write_best(args.section, params, provenance, f"loss {best['loss']:.3f}, time to stand per start {times} s")
+        for target in write_all():
+            print(f"wrote {target}")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
