@@ -86,7 +86,8 @@ def upright_on_feet(world: WorldModel) -> bool:
 
 class FallWatch:
     """Possible fall (gyro, accelerometer or tilt), confirmed by no weight on the feet and a lying, resting
-    accelerometer. ``fallen`` and ``side`` hold until :meth:`reset`."""
+    accelerometer; a suspicion ends after 2 * CONFIRM_CYCLES upright on loaded feet (a bump). ``fallen`` and
+    ``side`` hold until :meth:`reset`."""
 
     def __init__(self) -> None:
         self.reset()
@@ -96,6 +97,7 @@ class FallWatch:
         self.fallen = False
         self.side: str | None = None
         self._evidence = 0
+        self._upright = 0
 
     def update(self, world: WorldModel) -> None:
         body = world.body
@@ -112,8 +114,10 @@ class FallWatch:
             self._evidence += 1
         else:
             self._evidence = 0
-            if upright_on_feet(world):
-                self.suspected = False  # a bump, not a fall
+        self._upright = self._upright + 1 if upright_on_feet(world) and rate < GYRO_TRIGGER_DEG_S else 0
+        if self._upright >= 2 * CONFIRM_CYCLES:
+            self.suspected = False  # a bump, not a fall
+            self._upright = 0
         if self._evidence >= CONFIRM_CYCLES:
             self.fallen, self.side = True, side
 

@@ -1,0 +1,149 @@
+"""Fall detection and stand-up decisions from the world model alone (REFERENCE §7.7): suspicion from gyro or
+accelerometer, confirmation by unloaded feet at rest, the side from the accelerometer, success by loaded
+feet under an upright torso, retries; played through SkillBehavior with stand-in motions."""
+
+from __future__ import annotations
+
+from agent.motion import MotionController, MotionLibrary
+from agent.skills.behavior import SkillBehavior
+from agent.skills.standup import (CHECK_TIMEOUT_CYCLES, CONFIRM_CYCLES, RECOVERY_CYCLES, FallWatch, lying_side,
+                                  standup_side)
+from agent.world.state import FootContact
+from agent.world_model import WorldModel
+from kinematics import JOINT_NAMES
+from motions.model import XML, JointTarget, Keyframe, Motion
+
+G = 9.81
+BACK = (0.0, G, 0.3)
+FRONT = (0.0, -G, 1.5)
+SIDE = (G, 1.0, 0.5)
+UPRIGHT = (0.0, 1.5, 9.7)
+LOADED = {"lf": FootContact((0.0, 0.0, 0.0), (0.0, 0.0, 22.6)), "rf": FootContact((0.0, 0.0, 0.0), (0.0, 0.0, 22.6))}
+EDGE_ON = {"lf": FootContact((0.0, 0.0, 0.0), (0.0, 9.9, 0.1))}  # lying: heels touch, no vertical load
+
+
+def _world(acc=UPRIGHT, gyro=(0.0, 0.0, 0.0), feet=None, up_z=1.0) -> WorldModel:
+    world = WorldModel("T", 1)
+    _set(world, acc, gyro, feet if feet is not None else LOADED, up_z)
+    world.body.joints_rad = {name: 0.0 for name in JOINT_NAMES}
+    return world
+
+
+def _set(world: WorldModel, acc, gyro=(0.0, 0.0, 0.0), feet=None, up_z=None) -> None:
+    world.body.acc_m_s2 = acc
+    world.body.gyro_deg_s = gyro
+    world.body.feet = dict(feet or {})
+    if up_z is not None:
+        world.body.up_z = up_z
+
+
+def test_lying_side_from_the_accelerometer():
+    assert lying_side(_world(BACK)) == "back"
+    assert lying_side(_world(FRONT)) == "front"
+    assert lying_side(_world(SIDE)) == "side"
+    assert lying_side(_world(UPRIGHT)) is None
+    assert lying_side(_world((0.0, 30.0, 0.0))) is None  # an impact, not gravity
+    assert standup_side(_world(SIDE)) == "back" and standup_side(_world((G, -1.0, 0.5))) == "front"
+
+
+def test_fall_confirmed_only_after_the_feet_carry_nothing_for_a_while():
+    world = _world()
+    watch = FallWatch()
+    _set(world, UPRIGHT, gyro=(250.0, 0.0, 0.0), feet=LOADED, up_z=0.9)  # the fall starts: gyro spike
+    watch.update(world)
+    assert watch.suspected and not watch.fallen
+    for cycle in range(CONFIRM_CYCLES):
+        assert not watch.fallen
+        _set(world, BACK, feet=EDGE_ON, up_z=0.05)
+        watch.update(world)
+    assert watch.fallen and watch.side == "back"
+
+
+def test_a_bump_is_not_a_fall():
+    world = _world()
+    watch = FallWatch()
+    _set(world, UPRIGHT, gyro=(300.0, 80.0, 0.0), feet=LOADED, up_z=0.95)
+    watch.update(world)
+    assert watch.suspected
+    for _ in range(3 * CONFIRM_CYCLES):
+        _set(world, UPRIGHT, feet=LOADED, up_z=0.97)
+        watch.update(world)
+    assert not watch.fallen and not watch.suspected
+
+
+def test_lying_with_loaded_feet_or_still_tumbling_is_not_confirmed():
+    world = _world()
+    watch = FallWatch()
+    for _ in range(3 * CONFIRM_CYCLES):  # on the back, but something presses the soles (e.g. feet on a robot)
+        _set(world, BACK, feet=LOADED, up_z=0.05)
+        watch.update(world)
+    assert not watch.fallen
+    for _ in range(3 * CONFIRM_CYCLES):  # unloaded, but still rolling
+        _set(world, FRONT, gyro=(150.0, 40.0, 0.0), feet={}, up_z=0.1)
+        watch.update(world)
+    assert not watch.fallen
+    for _ in range(CONFIRM_CYCLES):
+        _set(world, FRONT, feet={}, up_z=0.1)
+        watch.update(world)
+    assert watch.fallen and watch.side == "front"
+
+
+def _stand_in(name: str) -> Motion:
+    """A two-phase stand-in for a stand-up motion (what it does to the body does not matter here)."""
+    phases = [Keyframe("a", 0.04, {"llj3": JointTarget.from_deg(10.0)}, next="b"),
+              Keyframe("b", 0.04, {"llj3": JointTarget.from_deg(0.0)}, is_final=True)]
+    return Motion(name, phases, source_format=XML, first_phase="a")
+
+
+def _behavior() -> SkillBehavior:
+    library = MotionLibrary({name: _stand_in(name) for name in ("standup_back", "standup_front")})
+    return SkillBehavior(MotionController(library))
+
+
+def _cycle(behavior: SkillBehavior, world: WorldModel, cycles: int = 1) -> None:
+    for _ in range(cycles):
+        world.game.server_time_s += 0.02
+        behavior(world)
+
+
+def _play_to_end(behavior: SkillBehavior, world: WorldModel, name: str) -> None:
+    """Cycles until the stand-in motion ``name`` has played once more (at most 30)."""
+    before = behavior.motion.completed[name]
+    for _ in range(30):
+        _cycle(behavior, world)
+        if behavior.motion.completed[name] > before:
+            return
+    raise AssertionError(f"{name} did not end")
+
+
+def test_behavior_plays_the_side_standup_and_ends_once_the_feet_carry_an_upright_robot():
+    behavior, world = _behavior(), _world()
+    _set(world, FRONT, feet={}, up_z=0.1)
+    _cycle(behavior, world, CONFIRM_CYCLES + 1)
+    assert behavior.recovering and behavior.standup.sides == ["front"]
+    _play_to_end(behavior, world, "standup_front")
+    _set(world, UPRIGHT, feet=LOADED, up_z=0.97)
+    _cycle(behavior, world, RECOVERY_CYCLES + 1)
+    assert not behavior.recovering and behavior.standup.done and behavior.standup.attempts == 1
+    assert not behavior.fall_watch.fallen
+
+
+def test_standup_retries_with_the_side_it_lies_on_now():
+    behavior, world = _behavior(), _world()
+    _set(world, BACK, feet={}, up_z=0.05)
+    _cycle(behavior, world, CONFIRM_CYCLES + 1)
+    _play_to_end(behavior, world, "standup_back")
+    _set(world, FRONT, feet={}, up_z=0.1)  # it rolled over onto its front instead of standing
+    _cycle(behavior, world, 8)
+    assert behavior.standup.sides == ["back", "front"]
+    assert behavior.recovering
+
+
+def test_standup_retries_when_not_upright_in_time():
+    behavior, world = _behavior(), _world()
+    _set(world, BACK, feet={}, up_z=0.05)
+    _cycle(behavior, world, CONFIRM_CYCLES + 1)
+    _play_to_end(behavior, world, "standup_back")
+    _set(world, (0.0, 4.0, 8.9), feet=EDGE_ON, up_z=0.9)  # sitting: upright-ish, feet unloaded, not lying
+    _cycle(behavior, world, CHECK_TIMEOUT_CYCLES + 2)
+    assert behavior.standup.attempts == 2 and behavior.standup.sides == ["back", "back"]
