@@ -24,6 +24,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 from agent.agent import Agent, AgentConfig
+from agent.player import BEHAVIORS, DEFAULT_BEHAVIOR, agent_factory
 from agent.errors import ConfigError, ServerUnreachable
 from agent.localization import DEFAULT_LOCALIZER, LOCALIZERS
 from agent.protocol.errors import ProtocolError
@@ -173,6 +174,9 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--type", dest="robot_type", type=int, default=0, help="robot type 0-4 (default 0)")
     parser.add_argument("--localization", default=DEFAULT_LOCALIZER, choices=sorted(LOCALIZERS),
                         help=f"self-localization method (default {DEFAULT_LOCALIZER})")
+    parser.add_argument("--behavior", default=DEFAULT_BEHAVIOR, choices=sorted(BEHAVIORS),
+                        help=f"what the agent does: soccer plays with the shipped motions, idle only connects, "
+                             f"beams, localizes and talks (default {DEFAULT_BEHAVIOR})")
     parser.add_argument("--attempts", type=int, default=ConnectionPolicy.connect_attempts,
                         help="connection attempts before giving up (default 5)")
     parser.add_argument("--log-level", default="INFO", help="logging level (default INFO)")
@@ -183,15 +187,17 @@ def main(argv: Sequence[str] | None = None) -> int:
     """CLI entry: returns the process exit code (0 done, 2 bad options or no server)."""
     args = build_parser().parse_args(argv)
     logging.basicConfig(level=args.log_level.upper(), format="%(asctime)s %(levelname)s %(name)s: %(message)s")
-    return run_cli(args.host, args.port, args.team, args.unum, args.robot_type, args.localization, args.attempts)
+    return run_cli(args.host, args.port, args.team, args.unum, args.robot_type, args.localization, args.attempts,
+                   args.behavior)
 
 
 def run_cli(host: str, port: int, team: str, unum: int, robot_type: int, localization: str = DEFAULT_LOCALIZER,
-            attempts: int = ConnectionPolicy.connect_attempts) -> int:
+            attempts: int = ConnectionPolicy.connect_attempts, behavior: str = DEFAULT_BEHAVIOR) -> int:
     """Run with user-facing error handling: a clear message on stderr and a non-zero code on failure."""
     try:
         config = AgentConfig(team=team, unum=unum, robot_type=robot_type, localization=localization)
-        stats = run(config, host, port, ConnectionPolicy(connect_attempts=max(1, attempts)))
+        stats = run(config, host, port, ConnectionPolicy(connect_attempts=max(1, attempts)),
+                    make_agent=agent_factory(behavior))
     except ConfigError as error:
         print(f"agent: bad option {error.field}: {error}", file=sys.stderr)
         return 2

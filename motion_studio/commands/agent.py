@@ -18,10 +18,11 @@ def agent_command(
     robot_type: Annotated[int, typer.Option("--type", help="robot type 0-4")] = 0,
     localization: Annotated[str, typer.Option(help="self-localization: ekf or seed")] = "ekf",
     attempts: Annotated[int, typer.Option(help="connection attempts before giving up")] = 5,
+    behavior: Annotated[str, typer.Option(help="soccer (play with the shipped motions) or idle")] = "soccer",
 ) -> None:
     """Connect to HOST:PORT, join TEAM as UNUM and play until the server goes away."""
     from agent.runner import run_cli
 
-    code = run_cli(host, port, team, unum, robot_type, localization, attempts)
+    code = run_cli(host, port, team, unum, robot_type, localization, attempts, behavior)
     if code:
         raise typer.Exit(code)

@@ -4,7 +4,7 @@ import json
 
 import pytest
 
-from motion_studio.match_agents import make_agent
+from motion_studio.match_agents import make_idle_agent as make_agent
 from sim.match import MatchConfig, run_match
 from sim.match_batch import batch_configs, finished_ids, run_batch
 

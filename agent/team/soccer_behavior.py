@@ -1,0 +1,168 @@
+"""The agent's default soccer behaviour: one role per player each cycle, played through the skills.
+
+Roles (``agent.team.roles``): the player that the shared on-ball rule picks goes to the ball and kicks it
+toward the opponent goal (the seed's choice, REFERENCE §7.8: the normal kick when the goal is nearer than
+2.5 m, else the strong kick); the goalkeeper guards its line facing the ball; the others walk to support
+spots that follow the ball and face it. Nobody moves while the play mode forbids it (before kick-off, after
+a goal, game over); during the opponents' set pieces the on-ball player keeps its distance like the others.
+
+Skills are kept while the decision stays the same (a new ``WalkTo`` only when its target moved more than
+``RETARGET_M``), so their internal state (turns under way, stops) is not cut off every cycle. Falls are
+handled by ``SkillBehavior`` (stand-up first, then the role's skill again).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Hashable
+
+from agent.motion import MotionController
+from agent.protocol.effectors import Action
+from agent.skills.base import PlayMotion, Skill
+from agent.skills.behavior import SkillBehavior
+from agent.skills.kick import KickToward
+from agent.skills.turn import TurnToFace
+from agent.skills.walk import STAND, WalkTo, WalkToBall
+from agent.team import roles
+from agent.world_model import WorldModel
+
+#: A support or keeper target that moved less than this keeps the running WalkTo [m].
+RETARGET_M = 0.5
+#: Goal nearer than this → the normal kick, else the strong one [m] (REFERENCE §7.8).
+NORMAL_KICK_GOAL_DISTANCE_M = 2.5
+#: Facing error a player standing on its spot tolerates before turning to the ball [deg].
+FACE_TOLERANCE_DEG = 20.0
+#: Play modes in which nobody moves (REFERENCE §4.2).
+FROZEN_MODES = frozenset({"BeforeKickOff", "Goal_Left", "Goal_Right", "GameOver", "unknown"})
+#: Set pieces (the suffix names the team taking it).
+SET_PIECE_PREFIXES = ("KickOff_", "KickIn_", "corner_kick_", "goal_kick_", "free_kick_", "direct_free_kick_",
+                      "pass_")
+#: Distance the players keep from the ball at the opponents' set pieces [m] (the referee clears 2 m).
+SET_PIECE_CLEARANCE_M = 2.2
+
+
+def own_set_piece(play_mode: str, side: str | None) -> bool | None:
+    """True for the own team's set piece, False for the opponents', None when no set piece."""
+    for prefix in SET_PIECE_PREFIXES:
+        if play_mode.startswith(prefix):
+            taker = play_mode[len(prefix):].lower()
+            return side is not None and taker == side
+    return None
+
+
+class SoccerBehavior:
+    """A ``Behavior`` (``world -> actions``) that plays soccer with the skills; see the module docstring.
+
+    Args:
+        robot_type: 0-4 (the motion library and the kinematics).
+        controller: the motion controller (default: the shipped motions and dynamic elements).
+    """
+
+    def __init__(self, robot_type: int = 0, controller: MotionController | None = None) -> None:
+        self.skills = SkillBehavior(controller, None, robot_type)
+        self.holder: int | None = None
+        """The unum this player believes plays the ball (hysteresis of the on-ball rule)."""
+        self.role = "idle"
+        """This cycle's role: idle, on_ball, keeper, support (for logs and tests)."""
+        self._key: Hashable = None
+        self._target: tuple[float, float] | None = None
+
+    @property
+    def motion(self) -> MotionController:
+        return self.skills.motion
+
+    def __call__(self, world: WorldModel) -> list[Action]:
+        self._decide(world)
+        return self.skills(world)
+
+    # --- decisions --------------------------------------------------------------------------------------
+    def _decide(self, world: WorldModel) -> None:
+        game = world.game
+        if game.play_mode in FROZEN_MODES or game.side is None:
+            # Crouch into the walk stance while waiting: the first walk then starts from its own stance
+            # instead of the upright beam pose.
+            self.role = "idle"
+            self._use(("idle",), lambda: PlayMotion(STAND) if STAND in self.motion.library else None)
+            return
+        ball = roles.ball_belief(world)
+        set_piece = own_set_piece(game.play_mode, game.side)
+        if world.unum == roles.GOALKEEPER_UNUM and not (ball is not None and roles.keeper_plays_ball(ball)):
+            self.role = "keeper"
+            self._stand_at(world, roles.keeper_spot(ball), ball)
+            return
+        if ball is None:
+            self.role = "search"
+            self._use(("search",), WalkToBall)  # stands and sweeps the head until the ball is seen
+            return
+        self.holder = roles.choose_on_ball(roles.candidates(world), ball, self.holder)
+        if self.holder == world.unum and set_piece is not False:
+            self.role = "on_ball"
+            self._play_ball(ball)
+            return
+        self.role = "support"
+        spot = roles.support_spot(world.unum, ball)
+        if set_piece is False:
+            spot = _keep_clear(spot, ball, SET_PIECE_CLEARANCE_M)
+        self._stand_at(world, spot, ball)
+
+    def _play_ball(self, ball: tuple[float, float]) -> None:
+        """Walk to the ball until WalkToBall says it is close and in front, then kick; after the kick (or a
+        kick that gave up) approach again."""
+        skill = self.skills.skill
+        if self._key == ("kick",):
+            if skill is not None and not skill.done:
+                return
+            self._key = None
+        if self._key == ("approach",) and skill is not None and skill.done:
+            goal = roles.OPPONENT_GOAL_M
+            strong = math.hypot(goal[0] - ball[0], goal[1] - ball[1]) >= NORMAL_KICK_GOAL_DISTANCE_M
+            self._use(("kick",), lambda: KickToward(goal[0], goal[1], strong=strong))
+            return
+        self._use(("approach",), WalkToBall)
+
+    def _stand_at(self, world: WorldModel, spot: tuple[float, float], ball: tuple[float, float] | None) -> None:
+        target = self._target
+        moved = target is None or math.hypot(spot[0] - target[0], spot[1] - target[1]) > RETARGET_M
+        skill = self.skills.skill
+        walking = isinstance(skill, WalkTo) and not skill.done
+        if moved or (not walking and not self._on_spot(world, spot)):
+            self._target = spot
+            self._use(("walk", spot), lambda: WalkTo(*spot))
+            return
+        if walking:
+            return
+        if ball is not None and not self._facing(world, ball):
+            self._use(("face", round(ball[0]), round(ball[1])), lambda: TurnToFace(*ball))
+
+    def _on_spot(self, world: WorldModel, spot: tuple[float, float]) -> bool:
+        pose = world.pose
+        return pose is not None and math.hypot(spot[0] - pose.x_m, spot[1] - pose.y_m) <= RETARGET_M
+
+    @staticmethod
+    def _facing(world: WorldModel, point: tuple[float, float]) -> bool:
+        pose = world.pose
+        if pose is None:
+            return True
+        forward, left = pose.to_ego(*point)
+        return abs(math.degrees(math.atan2(left, forward))) <= FACE_TOLERANCE_DEG
+
+    def _use(self, key: Hashable, make: Callable[[], Skill | None]) -> None:
+        """Switch to the skill ``make()`` unless the decision ``key`` is the one already running."""
+        if key == self._key:
+            return
+        self._key = key
+        self.skills.set_skill(make())
+
+
+def _keep_clear(spot: tuple[float, float], ball: tuple[float, float], clearance_m: float) -> tuple[float, float]:
+    """``spot`` moved away from the ball to at least ``clearance_m`` (toward the own goal if on the ball)."""
+    dx, dy = spot[0] - ball[0], spot[1] - ball[1]
+    distance = math.hypot(dx, dy)
+    if distance >= clearance_m:
+        return spot
+    if distance < 1e-6:
+        dx, dy, distance = -1.0, 0.0, 1.0
+    return ball[0] + dx / distance * clearance_m, ball[1] + dy / distance * clearance_m
+
+
+__all__ = ["SoccerBehavior", "own_set_piece"]
