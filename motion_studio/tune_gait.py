@@ -82,20 +82,31 @@ class Trial:
 
     duration_s: float
     pushes: tuple[Push, ...] = ()
+    lean: float = 0.0
+    """Walk-lean request of the trial (+ = curve left): the walk must stay up and curve that way."""
 
 
-def default_trials(motion: str, quick: bool = False) -> tuple[Trial, ...]:
-    """A plain run (20 s for the forward walk: the run challenge), a sideways push, a forward push."""
+def default_trials(motion: str, quick: bool = False, lean: bool = False) -> tuple[Trial, ...]:
+    """A plain run (20 s for the forward walk: the run challenge), a sideways push, a forward push, and with
+    ``lean`` full leans both ways (the walk must stay steerable)."""
     forward = motion == "walk_forward"
     long_s = 20.0 if forward else 12.0
     if quick:
         return (Trial(6.0),)
-    return (Trial(long_s), Trial(10.0, (Push(4.0, left_m_s=0.25),)),
-            Trial(10.0, (Push(4.0, forward_m_s=0.2 if forward else -0.2), Push(7.0, left_m_s=-0.25))))
+    trials = (Trial(long_s), Trial(10.0, (Push(4.0, left_m_s=0.25),)),
+              Trial(10.0, (Push(4.0, forward_m_s=0.2 if forward else -0.2), Push(7.0, left_m_s=-0.25))))
+    if lean and forward:
+        trials += (Trial(10.0, lean=1.0), Trial(10.0, lean=-1.0))
+    return trials
+
+
+#: Curvature [deg/m] a full lean must reach to earn its whole bonus.
+LEAN_CURVATURE_DEG_M = 20.0
 
 
 def trial_score(run: WalkRun, direction: tuple[float, float]) -> dict[str, float]:
-    """Figures and the score of one trial (higher is better)."""
+    """Figures and the score of one trial (higher is better); a lean trial earns a bonus for curving its
+    way (capped) instead of paying for the heading change."""
     forward, left = run.displacement_m()
     along = forward * direction[0] + left * direction[1]
     across = abs(-forward * direction[1] + left * direction[0])
@@ -105,13 +116,18 @@ def trial_score(run: WalkRun, direction: tuple[float, float]) -> dict[str, float
         score -= 2.0 / time_s + 0.5
     if run.fell_stopping:
         score -= 0.3
-    score -= 0.3 * across / max(time_s, 1.0) + 0.002 * abs(run.heading_change_deg)
+    if run.lean:
+        curving = math.copysign(1.0, run.lean) * run.curvature_deg_m
+        score += 0.02 * max(-LEAN_CURVATURE_DEG_M, min(LEAN_CURVATURE_DEG_M, curving))
+    else:
+        score -= 0.3 * across / max(time_s, 1.0) + 0.002 * abs(run.heading_change_deg)
     return {"score": score, "along_m": along, "across_m": across, "time_s": run.walk_time_s, "fell": float(run.fell),
             "fell_stopping": float(run.fell_stopping), "heading_deg": run.heading_change_deg}
 
 
 def evaluate(motion: str, params: GaitParams, trials: Sequence[Trial]) -> dict[str, object]:
-    """Loss (lower is better) and per-trial figures of one candidate; an IK failure is a large loss."""
+    """Loss (lower is better) and per-trial figures of one candidate; an IK failure is a large loss. Lean
+    trials play with the shipped ``[walk_lean]`` curve."""
     try:
         library = MotionLibrary()
         library.add(build_walk(motion, params))
@@ -121,9 +137,10 @@ def evaluate(motion: str, params: GaitParams, trials: Sequence[Trial]) -> dict[s
     direction = DIRECTIONS[motion]
     results = []
     for trial in trials:
-        run = run_walk(library, motion, trial.duration_s, pushes=trial.pushes,
+        lean_start = (-8.0, 0.0) if trial.lean else (-13.5, 0.0)
+        run = run_walk(library, motion, trial.duration_s, pushes=trial.pushes, lean=trial.lean,
                        x_limit_m=14.5 if direction[0] > 0 else None,
-                       position_m=(-13.5, 0.0) if direction[0] > 0 else (0.0, 0.0))
+                       position_m=lean_start if direction[0] > 0 else (0.0, 0.0))
         results.append(trial_score(run, direction))
     loss = -float(np.mean([r["score"] for r in results]))
     return {"loss": loss, "trials": [{k: round(v, 4) for k, v in r.items()} for r in results]}
@@ -254,19 +271,23 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--step-cycles", type=int, default=None, help="fix step_cycles (cycles of 20 ms per step)")
     parser.add_argument("--checkpoint", type=Path, default=None)
     parser.add_argument("--quick", action="store_true", help="one short trial per candidate (smoke test)")
+    parser.add_argument("--lean", action="store_true", help="add full-lean trials (the walk must stay steerable)")
+    parser.add_argument("--base-json", type=Path, default=None, help="start from these parameters (JSON object)")
     parser.add_argument("--write", action="store_true", help="write the best into gait.toml and regenerate")
     parser.add_argument("--common", action="store_true", help="with --write: the posture keys also go to [common]")
     args = parser.parse_args(argv)
     base = load_gait_params()[args.motion]
+    if args.base_json:
+        base = _params(json.loads(args.base_json.read_text()))
     if args.step_cycles:
         base = replace(base, step_cycles=args.step_cycles)
     checkpoint = args.checkpoint or CHECKPOINT_DIR / f"{args.motion}_{base.step_cycles}.json"
-    data = tune(args.motion, base, SPACES[args.motion], default_trials(args.motion, args.quick), args.generations,
+    data = tune(args.motion, base, SPACES[args.motion], default_trials(args.motion, args.quick, args.lean), args.generations,
                 checkpoint, args.workers, args.sigma, args.popsize, args.seed)
     print(f"best loss {data['best']['loss']:.4f}: {data['best']['params']}")
     if args.write:
         command = (f"python -m motion_studio.tune_gait {args.motion} --step-cycles {base.step_cycles} "
-                   f"--generations {args.generations} --seed {args.seed}")
+                   f"--generations {args.generations} --seed {args.seed}" + (" --lean" if args.lean else ""))
         keys = [d.name for d in POSTURE] if args.common else []
         for path in write_best(args.motion, data["best"], command, common_keys=keys):
             print(path)

@@ -39,9 +39,9 @@ class WalkConfig:
     lean_band_deg: float = 7.0
     """Heading error steered with the walk lean alone (REFERENCE §7.2: 7°); a standing robot turns first
     when its error is larger and turn motions exist."""
-    lean_full_deg: float = 7.0
+    lean_full_deg: float = 15.0
     """Heading error that asks for a full lean (smaller errors lean proportionally)."""
-    turn_band_deg: float = 30.0
+    turn_band_deg: float = 45.0
     """A walking robot stops to turn in place once its error exceeds this (with turn motions)."""
     arrive_m: float = 0.15
     """Target reached within this distance [m]."""
@@ -52,6 +52,11 @@ class WalkConfig:
     """Head (yaw, pitch) while walking [deg, SimSpark signs] (level: landmarks in view for localization)."""
     max_corrections: int = 6
     """Short correcting walks near the target before WalkTo gives up (``done`` with ``reached`` False)."""
+    lean_rate_per_s: float = 2.5
+    """Largest change of the lean request per second (a sudden full lean can topple the walk); the lean
+    starts from 0 whenever the walk is not in its cycle phases."""
+    settle_after_turn_s: float = 0.3
+    """Standing still after a turn motion before walking on [s]."""
 
 
 def constant(motion: MotionController, name: str, key: str, default: float) -> float:
@@ -100,6 +105,10 @@ class _Steer:
     def __init__(self, config: WalkConfig) -> None:
         self.config = config
         self.turning: str | None = None
+        self.lean = 0.0
+        """The lean request sent last (slew-rate limited)."""
+        self._settle_cycles = 0
+        self._stands_before = 0
         self.just_turned = False
         """A turn has ended and no walk has started since: the lean, not another turn, takes the rest
         (a turn motion's smallest turn may exceed the lean band, so turning again could oscillate)."""
@@ -117,14 +126,34 @@ class _Steer:
         return self.request(self.turning, turn_deg=self._turn_deg)
 
     def turn_step(self, motion: MotionController) -> MotionRequest | None:
-        """The request while a turn is under way, None once it has ended."""
-        if self.turning is None:
+        """The request while a turn and the return to the stance after it are under way, else None."""
+        if self.turning is None and not self._settle_cycles:
             return None
         if motion.completed[self.turning] > self._turns_before:
             self.turning = None
             self.just_turned = True
+            self._settle_cycles = round(self.config.settle_after_turn_s / CYCLE_S)
+            self._stands_before = motion.completed[STAND]
+        if self.turning is None:
+            # Back into the walk stance (the turn may end in another pose, and the walk skips its own
+            # stance phase while the stance flag is still set), then stand still a moment.
+            if STAND in motion.library and motion.completed[STAND] <= self._stands_before:
+                return self.request(STAND)
+            if self._settle_cycles > 0:
+                self._settle_cycles -= 1
+                return self.request(None)
             return None
         return self.request(self.turning, turn_deg=self._turn_deg)
+
+    def smooth_lean(self, motion: MotionController, wanted: float) -> float:
+        """``wanted`` lean, approached at ``lean_rate_per_s`` from 0 once the walk cycles."""
+        cycling = motion.motion_name == FORWARD and (motion.phase_name or "").startswith("cycle")
+        if not cycling:
+            self.lean = 0.0
+            return 0.0
+        step = self.config.lean_rate_per_s * CYCLE_S
+        self.lean += max(-step, min(step, wanted - self.lean))
+        return self.lean
 
     def can_turn(self, motion: MotionController) -> bool:
         return TURN_LEFT in motion.library and TURN_RIGHT in motion.library
@@ -138,7 +167,7 @@ class _Steer:
             return self.turn(motion, bearing_deg)
         if walking:
             self.just_turned = False
-        return self.request(FORWARD, lean=_lean(bearing_deg, self.config))
+        return self.request(FORWARD, lean=self.smooth_lean(motion, _lean(bearing_deg, self.config)))
 
 
 class WalkTo(Skill):
@@ -168,8 +197,8 @@ class WalkTo(Skill):
         report_walk_odometry(world, motion)
         steer = self._steer
         pose = world.pose
-        if self.done or pose is None:
-            return steer.request(None)
+        if self.done or pose is None or not world.localized:
+            return steer.request(None)  # no trusted pose yet (e.g. just after a beam): stand and look
         under_way = steer.turn_step(motion)
         if under_way is not None:
             return under_way
@@ -184,7 +213,7 @@ class WalkTo(Skill):
             if motion.motion_name == FORWARD and not motion.stopping and forward > 0:
                 # Still walking in: stop once the remaining distance is what the stop covers.
                 if forward > stop_distance_m(motion, FORWARD) + self.config.arrive_m / 2 and abs(bearing_deg) < 45:
-                    return steer.request(FORWARD, lean=_lean(bearing_deg, self.config))
+                    return steer.request(FORWARD, lean=steer.smooth_lean(motion, _lean(bearing_deg, self.config)))
             return self._correct(motion, forward, left)
         return steer.heading(motion, bearing_deg)
 
@@ -353,8 +382,8 @@ class WalkToBall(Skill):
             remaining = {FORWARD: to_forward, BACKWARD: -to_forward, LEFT: left, RIGHT: -left}[name]
             limit = a.lateral_m / 2 if name in (LEFT, RIGHT) else stop_distance_m(motion, name)
             if remaining > limit:
-                return steer.request(name, head_deg=head,
-                                     lean=_lean(bearing_deg, self.config) if name == FORWARD else 0.0)
+                return steer.request(name, head_deg=head, lean=steer.smooth_lean(motion, _lean(bearing_deg, self.config))
+                                     if name == FORWARD else 0.0)
             return steer.request(None, head_deg=head)
         if not motion.idle and motion.motion_name in WALKS:
             return steer.request(None, head_deg=head)

@@ -236,9 +236,13 @@ def _phase(name: str, angles: dict[str, float], duration_ms: int, joints: tuple[
     return Keyframe(name, duration_ms / 1000.0, targets_deg(angles, joints), **attributes)  # type: ignore[arg-type]
 
 
-#: Leg joints whose cycle targets carry walk-lean names: hip yaw-pitch (turns the swing foot outward, the
-#: stance then turns the body toward it), hip pitch and ankle pitch (the seed agent's lean, REFERENCE §7.2).
+#: Leg joints whose cycle targets carry walk-lean names: hip yaw-pitch, hip pitch and ankle pitch (the seed
+#: agent's lean, REFERENCE §7.2). The hip yaw-pitch can only turn a foot outward (limit +1°); measured on
+#: our simulator, a foot turned outward through its swing curves the walk toward the *other* side (its
+#: 45° axis also pitches the hip), so the hip yaw-pitch carries the opposite lean's name (a left lean turns
+#: the right foot out); hip and ankle pitch carry their own side's name as in the seed agent.
 LEAN_JOINTS = (1, 3, 5)
+OPPOSITE_LEAN_JOINTS = (1,)
 
 
 def lean_side(cycle_index: int, params: GaitParams) -> str:
@@ -252,13 +256,15 @@ def lean_side(cycle_index: int, params: GaitParams) -> str:
 
 
 def _with_lean(keyframe: Keyframe, side: str) -> Keyframe:
-    """Mark the lean joints of ``side``'s leg in a cycle phase as ``{side}_walk_lean_{effector}`` computed
-    values: a left lean (+) changes the left leg around its swing, a right lean the right leg."""
+    """Mark the lean joints of ``side``'s leg in a cycle phase as ``{lean}_walk_lean_{effector}`` computed
+    values, ``lean`` = ``side`` (hip and ankle pitch) or the other side (hip yaw-pitch, OPPOSITE_LEAN_JOINTS)."""
     prefix = side[0]
+    other = "right" if side == "left" else "left"
     targets = dict(keyframe.targets)
     for number in LEAN_JOINTS:
         joint, effector = f"{prefix}lj{number}", f"{prefix}le{number}"
-        targets[joint] = JointTarget(targets[joint].angle_rad, f"{side}_walk_lean_{effector}")
+        lean = other if number in OPPOSITE_LEAN_JOINTS else side
+        targets[joint] = JointTarget(targets[joint].angle_rad, f"{lean}_walk_lean_{effector}")
     return replace(keyframe, targets=targets)
 
 
@@ -282,6 +288,7 @@ def build_walk(name: str, params: GaitParams, solver: KeyframeSolver | None = No
         kinematics.IKError: a keyframe out of reach.
     """
     solver = solver or KeyframeSolver()
+    solver.ik.reset()  # the IK warm-starts: a motion must not depend on what was solved before it
     ramp = ramp_scales(params.ramp_steps)
     # The ramp has an even number of steps before the cycle so that the cycle starts with the left foot.
     if len(ramp) % 2:
@@ -335,6 +342,7 @@ def build_stance(name: str, params: GaitParams, solver: KeyframeSolver | None = 
                  header_comments: tuple[str, ...] = (), duration_ms: int = 400) -> Motion:
     """A one-phase motion that goes to the walk stance and sets ``in_walk_position``."""
     solver = solver or KeyframeSolver()
+    solver.ik.reset()
     pose = stance_pose(params, solver)
     phase = _phase("stance", pose, duration_ms, is_final=True, set_flag_true=STANCE_FLAG)
     return Motion(name, [phase], source_format=XML, first_phase="stance", header_comments=header_comments)

@@ -140,8 +140,9 @@ def test_lean_names_sit_on_the_swing_leg_only(forward, shipped_params):
     for index, keyframe in enumerate(_phases(forward, "cycle_")):
         side = lean_side(index, params)
         computed = {wire: t.computed for wire, t in keyframe.targets.items() if t.computed}
-        prefix = side[0]
-        assert computed == {f"{prefix}lj{k}": f"{side}_walk_lean_{prefix}le{k}" for k in (1, 3, 5)}
+        prefix, other = side[0], "right" if side == "left" else "left"
+        assert computed == {f"{prefix}lj1": f"{other}_walk_lean_{prefix}le1",
+                            **{f"{prefix}lj{k}": f"{side}_walk_lean_{prefix}le{k}" for k in (3, 5)}}
     assert not any(t.computed for k in forward.keyframes if not k.name.startswith("cycle_")
                    for t in k.targets.values())
 
