@@ -65,6 +65,8 @@ class WorldModel:
         """Flag/goal-post name -> last sighting."""
         self.reports: dict[int, TeammateReport] = {}
         """Unum -> the teammate's last decoded message."""
+        self.own_report: TeammateReport | None = None
+        """The own last team message as the server echoed it (what the teammates know about us)."""
         self.ignored_messages = 0
         """Heard messages dropped: the other team's, or ours that failed to decode (garbled, foreign)."""
         self._last_yaw: float | None = None
@@ -173,6 +175,7 @@ class WorldModel:
 
     def _hear(self, team: str | None, is_self: bool, game_time_s: float, text: str) -> None:
         if is_self:
+            self._hear_self(game_time_s, text)
             return
         if team is not None and team != self.team:
             self.ignored_messages += 1
@@ -184,6 +187,18 @@ class WorldModel:
             logger.debug("ignored team message: %s", error)
             return
         self.apply_message(message, game_time_s)
+
+    def _hear_self(self, game_time_s: float, text: str) -> None:
+        """Keep the own message as the server echoed it: what every teammate heard about us, at the same
+        cycle. Team decisions take the own position from it, so that every player decides on the same data
+        (the own pose is fresher than what the others know, and that asymmetry made two players both
+        believe they played the ball)."""
+        try:
+            message = decode(text, self.team)
+        except MessageError:
+            return
+        self.own_report = TeammateReport(message.unum, message.kind, self.game.server_time_s, game_time_s,
+                                         message.position, message.ball, None, active=message.kind != "x")
 
     def apply_message(self, message: TeamMessage, game_time_s: float) -> None:
         """Fold a teammate's decoded message in (its position becomes a ``say`` sighting of that teammate)."""

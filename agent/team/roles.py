@@ -68,12 +68,20 @@ def ball_belief(world: WorldModel) -> tuple[float, float] | None:
 
 
 def candidates(world: WorldModel) -> list[Candidate]:
-    """Self (if localized) and the teammates with a fresh position report, by unum."""
+    """Self (if localized) and the teammates with a fresh position report, by unum.
+
+    The own position is the one of the own last message as the server echoed it, when fresh: every
+    teammate decides with that same position, so all players reach the same choice.
+    """
     now = world.now_s
     out: dict[int, Candidate] = {}
     pose = world.pose
     if pose is not None and world.localized and not world.body.fallen:
-        out[world.unum] = Candidate(world.unum, pose.x_m, pose.y_m)
+        own = world.own_report
+        if own is not None and own.position is not None and own.active and now - own.heard_s <= REPORT_FRESH_S:
+            out[world.unum] = Candidate(world.unum, *own.position)
+        else:
+            out[world.unum] = Candidate(world.unum, pose.x_m, pose.y_m)
     for unum, report in world.reports.items():
         if unum == world.unum or not report.active or report.position is None:
             continue

@@ -2,7 +2,7 @@
 
 Roles (``agent.team.roles``): the player that the shared on-ball rule picks goes to the ball and kicks it
 toward the opponent goal (the seed's choice, REFERENCE §7.8: the normal kick when the goal is nearer than
-2.5 m, else the strong kick); the goalkeeper guards its line facing the ball; the others walk to support
+2.5 m, else the strong kick; a library without kicks makes it dribble); the goalkeeper guards its line facing the ball; the others walk to support
 spots that follow the ball and face it. Nobody moves while the play mode forbids it (before kick-off, after
 a goal, game over); during the opponents' set pieces the on-ball player keeps its distance like the others.
 
@@ -28,6 +28,10 @@ from agent.world_model import WorldModel
 
 #: A support or keeper target that moved less than this keeps the running WalkTo [m].
 RETARGET_M = 0.5
+#: Without kick motions the on-ball player walks this far through the ball toward the goal [m].
+DRIBBLE_M = 1.0
+#: The kick motion the library must have for kicking (else the player dribbles).
+KICK = "kick"
 #: Goal nearer than this → the normal kick, else the strong one [m] (REFERENCE §7.8).
 NORMAL_KICK_GOAL_DISTANCE_M = 2.5
 #: Facing error a player standing on its spot tolerates before turning to the ball [deg].
@@ -115,6 +119,12 @@ class SoccerBehavior:
             self._key = None
         if self._key == ("approach",) and skill is not None and skill.done:
             goal = roles.OPPONENT_GOAL_M
+            if KICK not in self.motion.library:
+                # No kick motions: dribble, walking through the ball toward the goal.
+                heading = math.atan2(goal[1] - ball[1], goal[0] - ball[0])
+                through = (ball[0] + DRIBBLE_M * math.cos(heading), ball[1] + DRIBBLE_M * math.sin(heading))
+                self._use(("kick",), lambda: WalkTo(*through))
+                return
             strong = math.hypot(goal[0] - ball[0], goal[1] - ball[1]) >= NORMAL_KICK_GOAL_DISTANCE_M
             self._use(("kick",), lambda: KickToward(goal[0], goal[1], strong=strong))
             return

@@ -56,3 +56,26 @@ def test_the_keeper_follows_the_ball_within_the_goal():
     assert keeper_spot(None) == (-14.2, 0.0)
     assert keeper_spot((0.0, 2.0))[1] == pytest.approx(0.6)
     assert keeper_spot((-10.0, -9.0))[1] == pytest.approx(-0.8)
+
+
+def _sense(text: str, now_s: float = 10.0) -> bytes:
+    return (f"(time (now {now_s:.2f}))(GS (sl 0) (sr 0) (t 5.00) (pm PlayOn))"
+            f"(hear Mine {now_s:.2f} self {text})").encode()
+
+
+def test_the_own_position_in_team_decisions_is_the_one_the_teammates_heard():
+    """Every player must decide with the same data: the own echoed message, not the fresher own pose."""
+    from agent.communication.messages import TeamMessage, encode
+    from agent.protocol import parse_sense
+    from agent.team.roles import candidates
+    from agent.world_model import WorldModel
+
+    world = WorldModel("Mine", 2)
+    text = encode(TeamMessage("c", 2, position=(-3.0, 1.0), ball=(0.0, 0.0)), "Mine")
+    world.update(parse_sense(_sense(text)))
+    assert world.own_report is not None and world.own_report.position == (-3.0, 1.0)
+    # Garbage heard as "self" is ignored, the last good echo stays.
+    world.update(parse_sense(_sense("zz", 10.02)))
+    assert world.own_report.position == (-3.0, 1.0)
+    # Not localized: no candidate at all (a player that does not know where it is does not claim the ball).
+    assert candidates(world) == []
