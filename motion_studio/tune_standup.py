@@ -5,7 +5,7 @@ on our simulator (``motion_studio.scenarios.Scenario``) from a few lying starts 
 the walk stance at a seeded yaw, nudged by a seeded push and spin, left to settle). The loss of a start is
 the time from the motion's start until the robot stands for good (torso above 0.30 m, up axis z above 0.9,
 feet carrying the robot), or, if it never does, 6 s plus how far it stayed from standing (at the end and at
-its best moment). Penalties: a torso turned upside down (a flip is fragile), the server's self-collision
+its best moment) and how much of its weight its feet ever carried. Penalties: a torso turned upside down (a flip is fragile), the server's self-collision
 rule firing (it would freeze joints in a match, REFERENCE §4.5), a diverging simulation (counted as a
 failure). The candidate's loss is the mean over the starts.
 
@@ -54,6 +54,8 @@ MAX_S = 5.0
 #: Cycles in the walk stance before the lay-down; cycles lying before the motion starts.
 STANCE_CYCLES = 30
 SETTLE_CYCLES = 15
+#: The robot's weight, 4.6071 kg for every type (REFERENCE §2.5) [N].
+WEIGHT_N = 4.6071 * 9.81
 #: Loss terms.
 FAIL_LOSS = 6.0
 INVERTED_UP_Z = -0.45
@@ -88,6 +90,7 @@ GROUND_BOUNDS: dict[str, tuple[float, float, bool]] = {
 }
 #: Bounds of the crouch / rise parameters.
 POSE_BOUNDS: dict[str, tuple[float, float, bool]] = {
+    "ready_ms": (100, 400, True),
     "crouch_pitch_deg": (0.0, 45.0, False), "crouch_height_m": (0.26, 0.32, False),
     "crouch_com_forward_m": (-0.02, 0.05, False), "crouch_shoulder_pitch_deg": (-119.0, 90.0, False),
     "crouch_ms": (100, 600, True), "rise_com_forward_m": (-0.02, 0.04, False), "rise_ms": (100, 600, True),
@@ -95,11 +98,14 @@ POSE_BOUNDS: dict[str, tuple[float, float, bool]] = {
 }
 
 
-def dimensions(params: StandUpParams) -> list[Dimension]:
-    """Every tuned parameter of a stand-up with its bounds (ankle roll stays as it is)."""
-    dims = [Dimension(name, *bounds) for name, bounds in POSE_BOUNDS.items()]
-    for index in range(len(params.ground)):
-        dims += [Dimension(f"ground.{index}.{name}", *bounds) for name, bounds in GROUND_BOUNDS.items()]
+def dimensions(params: StandUpParams, frozen: frozenset[str] = frozenset()) -> list[Dimension]:
+    """Every tuned parameter of a stand-up with its bounds (ankle roll stays as it is); ``frozen`` names
+    ground phases (or ``ready``) kept as they are."""
+    dims = [Dimension(name, *bounds) for name, bounds in POSE_BOUNDS.items()
+            if not (name == "ready_ms" and "ready" in frozen)]
+    for index, pose in enumerate(params.ground):
+        if pose.name not in frozen:
+            dims += [Dimension(f"ground.{index}.{name}", *bounds) for name, bounds in GROUND_BOUNDS.items()]
     return dims
 
 
@@ -123,22 +129,25 @@ def with_values(params: StandUpParams, values: dict[str, float]) -> StandUpParam
 
 @dataclass(frozen=True)
 class Start:
-    """A lying start: yaw [deg], torso push [m/s] and spin [rad/s] right after the lay-down."""
+    """A lying start: the pose before the lay-down (None = the walk stance, else the seed of a
+    ``skill_bench.standup.prepose``), yaw [deg], torso push [m/s] and spin [rad/s] right after the lay-down."""
 
+    pose_seed: int | None
     yaw_deg: float
     push_m_s: tuple[float, float, float]
     spin_rad_s: tuple[float, float, float]
 
 
 def default_starts(count: int = 4, seed: int = 1) -> tuple[Start, ...]:
-    """The first start plain, then seeded yaws with pushes up to 0.3 m/s and spins up to 1 rad/s."""
+    """The first start from the walk stance, then seeded poses near it, yaws, pushes up to 0.3 m/s and spins
+    up to 0.6 rad/s (the lying body comes to rest on its flat torso, so the pose matters most)."""
     rng = random.Random(f"tune_standup/{seed}")
-    starts = [Start(0.0, (0.0, 0.0, 0.0), (0.0, 0.0, 0.0))]
-    for _ in range(count - 1):
+    starts = [Start(None, 0.0, (0.0, 0.0, 0.0), (0.0, 0.0, 0.0))]
+    for index in range(count - 1):
         angle = rng.uniform(-math.pi, math.pi)
         push = rng.uniform(0.0, 0.3)
         spin = tuple(round(rng.uniform(-0.6, 0.6), 3) for _ in range(3))
-        starts.append(Start(round(rng.uniform(-180.0, 180.0), 1),
+        starts.append(Start(seed * 100 + index, round(rng.uniform(-180.0, 180.0), 1),
                             (round(push * math.cos(angle), 3), round(push * math.sin(angle), 3), 0.0), spin))  # type: ignore[arg-type]
     return tuple(starts)
 
@@ -155,11 +164,15 @@ class Rollout:
     min_up_z: float
     self_collisions: int
     diverged: bool
+    best_feet_load: float = 0.0
+    """Largest 0.2 s mean of the vertical foot force over the robot's weight (the weight on the feet is
+    what a stand-up must reach; it shapes the loss of the failures)."""
 
     @property
     def loss(self) -> float:
         loss = self.time_s if self.time_s is not None else \
-            FAIL_LOSS + 3.0 * (1.0 - self.final_score) + 3.0 * (1.0 - self.best_score)
+            FAIL_LOSS + 3.0 * (1.0 - self.final_score) + 3.0 * (1.0 - self.best_score) + \
+            2.0 * (1.0 - self.best_feet_load)
         if self.diverged:
             return FAIL_LOSS + 6.0
         if self.min_up_z < INVERTED_UP_Z:
@@ -179,8 +192,13 @@ def rollout(motion: Motion, side: str, start: Start, seed: int = 0) -> Rollout:
 
     from sim.rules.self_collision import colliding_pairs
 
+    from motion_studio.skill_bench.standup import prepose
+
     library = MotionLibrary({"stand": _stand_motion(), motion.name: motion})
-    scenario = Scenario(PlayMotion("stand"), seed=seed, recover_falls=False,
+    first = "stand"
+    if start.pose_seed is not None:
+        first = library.add(prepose(_stand_motion(), random.Random(start.pose_seed)))
+    scenario = Scenario(PlayMotion(first), seed=seed, recover_falls=False,
                         controller=MotionController(library, load_dynamic_params(), 0))
     scenario.run(STANCE_CYCLES)
     scenario.lay_down(side, start.yaw_deg)
@@ -190,14 +208,16 @@ def rollout(motion: Motion, side: str, start: Start, seed: int = 0) -> Rollout:
     data = scenario.world.data
     warnings = data.warning[mujoco.mjtWarning.mjWARN_BADQACC].number
     cycles = round(min(MAX_S, motion.duration_s + AFTER_S) / CYCLE_S)
-    scores, standing, min_up, collisions = [], [], 1.0, 0
+    scores, standing, min_up, collisions, loads = [], [], 1.0, 0, []
     for cycle in range(cycles):
         truth = scenario.run(1)[0]
         if data.warning[mujoco.mjtWarning.mjWARN_BADQACC].number != warnings:
             return Rollout(None, 0.0, 0.0, -1.0, collisions, True)
         if cycle % 2 == 0 and colliding_pairs(0, scenario.engine.robot_body_poses()[0][3], 0.04):
             collisions += 1
-        feet = sum(float(np.linalg.norm(force)) for _, force in scenario.world.foot_forces(scenario.key).values())
+        forces = scenario.world.foot_forces(scenario.key).values()
+        feet = sum(float(np.linalg.norm(force)) for _, force in forces)
+        loads.append(min(1.0, sum(max(0.0, float(force[2])) for _, force in forces) / WEIGHT_N))
         min_up = min(min_up, truth.up_z)
         scores.append((min(1.0, max(0.0, truth.torso_m[2] / 0.34)) + min(1.0, max(0.0, truth.up_z))) / 2.0)
         standing.append(truth.torso_m[2] > STAND_Z_M and truth.up_z > STAND_UP_Z and feet > STAND_FEET_N)
@@ -206,8 +226,10 @@ def rollout(motion: Motion, side: str, start: Start, seed: int = 0) -> Rollout:
         first -= 1
     held = len(standing) - first >= round(HOLD_S / CYCLE_S)
     window = np.convolve(scores, np.ones(10) / 10, mode="valid")
+    load = np.convolve(loads, np.ones(10) / 10, mode="valid")
     return Rollout(round(first * CYCLE_S, 2) if held else None, float(np.mean(scores[-25:])),
-                   float(window.max()) if window.size else 0.0, min_up, collisions, False)
+                   float(window.max()) if window.size else 0.0, min_up, collisions, False,
+                   float(load.max()) if load.size else 0.0)
 
 
 def evaluate(section: str, params: StandUpParams, starts: tuple[Start, ...]) -> dict[str, object]:
@@ -231,9 +253,9 @@ def _evaluate_packed(packed: tuple[str, dict, tuple[Start, ...]]) -> dict[str, o
 
 def tune(section: str, base: StandUpParams, generations: int, starts: tuple[Start, ...], sigma: float = 0.1,
          popsize: int | None = None, workers: int = 1, checkpoint: Path | None = None, seed: int = 0,
-         log=print) -> dict:
+         frozen: frozenset[str] = frozenset(), log=print) -> dict:
     """CMA-ES over :func:`dimensions` around ``base``; returns the best {"loss", "values", "result"}."""
-    dims = dimensions(base)
+    dims = dimensions(base, frozen)
     x0 = np.array([d.to_unit(get_value(base, d.path)) for d in dims])
     state = json.loads(checkpoint.read_text()) if checkpoint and checkpoint.is_file() else None
     if state is not None:
@@ -300,19 +322,21 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--workers", type=int, default=1)
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--checkpoint", type=Path, default=None, help="default /tmp/nao3d-tune/<section>.json")
+    parser.add_argument("--freeze", default="", help="comma-separated ground phases (or 'ready') kept as they are")
     parser.add_argument("--write", action="store_true", help="write the best parameters and regenerate the files")
     args = parser.parse_args(argv)
     base = load_standup_params()[args.section]
     checkpoint = args.checkpoint or CHECKPOINT_DIR / f"{args.section}.json"
     starts = default_starts(args.starts)
+    frozen = frozenset(name for name in args.freeze.split(",") if name)
     best = tune(args.section, base, args.generations, starts, args.sigma, args.popsize, args.workers, checkpoint,
-                args.seed)
+                args.seed, frozen)
     print(json.dumps(best, indent=1))
     if args.write:
         params = with_values(base, best["values"])
         date = datetime.date.today().isoformat()
-        provenance = (f"tuned by python -m motion_studio.tune_standup {args.section} (CMA-ES, {args.generations} "
-                      f"generations, {len(starts)} lying starts) on {date}")
+        provenance = (f"tuned by python -m motion_studio.tune_standup {args.section} --starts {len(starts)} "
+                      f"--freeze '{args.freeze}' (CMA-ES, {args.generations} generations) on {date}")
         times = best["result"].get("times_s")
         write_best(args.section, params, provenance, f"loss {best['loss']:.3f}, time to stand per start {times} s")
         for target in write_all():

@@ -9,8 +9,10 @@ Thresholds (numbers, not tuned curves):
 * suspicion: the seed agent's 100 °/s gyro trigger (|gyro_y| + |gyro_z| in its axes = our x and y, the
   axes a torso tips over about), an accelerometer spike (collisions, impacts), or a tilted torso (the
   filter's up axis below REFERENCE §8.1's 0.6, or gravity less than half along the torso's own up axis);
-* confirmation: CONFIRM_CYCLES consecutive cycles of a lying accelerometer, feet carrying less than
-  FEET_LOADED_N and a quiet gyro (so the side is read once the robot has come to rest);
+* confirmation: CONFIRM_CYCLES consecutive cycles of a lying accelerometer and feet carrying less than
+  FEET_LOADED_N (the gyro may still be busy: a walk keeps swinging the legs of a fallen robot until the
+  stand-up replaces it); the stand-up then waits for a quiet gyro (at most SETTLE_CYCLES) before it reads
+  the side it plays;
 * success: an upright torso on loaded feet for RECOVERY_CYCLES after the motion; a robot not upright within
   CHECK_TIMEOUT_CYCLES (or lying again) tries again.
 
@@ -37,7 +39,7 @@ UP_Z_TRIGGER = 0.6
 LYING_ACC_FRACTION = 0.5
 #: The summed vertical foot force of a robot standing on its feet is above this [N] (about 55 % of 45.2 N).
 FEET_LOADED_N = 25.0
-#: Gyro rate below which the robot counts as at rest for the side decision [deg/s].
+#: Gyro rate below which the robot counts as at rest for the side decision of the stand-up [deg/s].
 QUIET_GYRO_DEG_S = 60.0
 #: Cycles of evidence before a fall is confirmed / a recovery is accepted.
 CONFIRM_CYCLES = 5
@@ -85,7 +87,7 @@ def upright_on_feet(world: WorldModel) -> bool:
 
 
 class FallWatch:
-    """Possible fall (gyro, accelerometer or tilt), confirmed by no weight on the feet and a lying, resting
+    """Possible fall (gyro, accelerometer or tilt), confirmed by no weight on the feet and a lying
     accelerometer; a suspicion ends after 2 * CONFIRM_CYCLES upright on loaded feet (a bump). ``fallen`` and
     ``side`` hold until :meth:`reset`."""
 
@@ -110,7 +112,7 @@ class FallWatch:
         if not self.suspected or self.fallen:
             return
         side = lying_side(world)
-        if side is not None and feet_force_n(world) < FEET_LOADED_N and rate < QUIET_GYRO_DEG_S:
+        if side is not None and feet_force_n(world) < FEET_LOADED_N:
             self._evidence += 1
         else:
             self._evidence = 0

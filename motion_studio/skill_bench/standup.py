@@ -4,9 +4,11 @@ after real falls, with the real agent recovering by itself (``SkillBehavior``'s 
 
 Trials (each on a fresh simulator; the robot first stands in the walk stance, motion ``stand``):
 
-* **lying** (back and front): the robot is laid on that side (``Scenario.lay_down``) at a seeded yaw in
-  [-180, 180) deg, then nudged by a seeded push (torso velocity up to ``PUSH_M_S``, angular velocity up to
-  ``SPIN_RAD_S``), so no two trials lie alike.
+* **lying** (back and front): the robot first takes a seeded pose near the walk stance (``prepose``: legs
+  and arms offset as in a step, a kick or a swing of the arms, left and right apart), is laid on that side
+  (``Scenario.lay_down``) at a seeded yaw in [-180, 180) deg and twist about its long axis, then nudged by a
+  seeded push (torso velocity up to ``PUSH_M_S``, angular velocity up to ``SPIN_RAD_S``). The lying body
+  comes to rest on its flat torso whatever the push, so the pose is what makes trials differ.
 * **pushed**: the robot standing in the walk stance, or walking (``walk_forward``), is knocked over by a
   seeded push in a random direction; the clock starts when it has fallen (REFERENCE §8.1 criterion).
 
@@ -25,18 +27,29 @@ import math
 import pathlib
 import random
 from collections.abc import Callable
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, replace
 
+from agent.motion import MotionController, MotionLibrary, default_library, load_dynamic_params
 from agent.skills.base import PlayMotion
 from motion_studio.scenarios import Scenario, Truth
+from motions.model import JointTarget, Motion
 
 SIDES = ("back", "front")
 #: Trials per side (and pushed trials) in a full / quick run.
 TRIALS, TRIALS_QUICK = 20, 2
 PUSHED_TRIALS, PUSHED_TRIALS_QUICK = 20, 2
-#: Largest nudge after the lay-down: torso speed [m/s] and spin [rad/s].
+#: Largest nudge after the lay-down: torso speed [m/s] and spin [rad/s]; largest twist about the long axis [deg].
 PUSH_M_S = 0.3
 SPIN_RAD_S = 1.0
+TWIST_DEG = 20.0
+#: Pose offsets before a fall, per joint group, left and right drawn apart [deg]: (low, high).
+PREPOSE_OFFSETS_DEG = {
+    "hip_pitch": (-15.0, 15.0), "knee": (-20.0, 15.0), "ankle_pitch": (-10.0, 10.0), "hip_roll": (-5.0, 5.0),
+    "shoulder_pitch": (-30.0, 90.0), "shoulder_roll": (-5.0, 30.0),
+}
+_PREPOSE_JOINTS = {"hip_pitch": ("llj3", "rlj3", 1), "knee": ("llj4", "rlj4", 1), "ankle_pitch": ("llj5", "rlj5", 1),
+                   "hip_roll": ("llj2", "rlj2", -1), "shoulder_pitch": ("laj1", "raj1", 1),
+                   "shoulder_roll": ("laj2", "raj2", -1)}
 #: Push that knocks a standing / walking robot over: horizontal torso speed range [m/s].
 KNOCK_M_S = (0.9, 1.5)
 #: Standing: torso centre above this [m], up axis z above this, both feet touching, for HOLD_S.
@@ -113,8 +126,27 @@ def _clock(scenario: Scenario, trial: Trial) -> Trial:
     return trial
 
 
-def _stood_scenario(seed: int) -> Scenario:
-    scenario = Scenario(PlayMotion("stand"), seed=seed)
+def prepose(stand: Motion, rng: random.Random, name: str = "prepose") -> Motion:
+    """The walk stance (``stand``'s last keyframe) with seeded offsets (PREPOSE_OFFSETS_DEG), as a motion."""
+    last = stand.keyframes[-1]
+    targets = dict(last.targets)
+    for group, (low, high) in PREPOSE_OFFSETS_DEG.items():
+        left, right, sign = _PREPOSE_JOINTS[group]
+        for wire, mirror in ((left, 1), (right, sign)):
+            base = targets[wire].angle_deg or 0.0
+            targets[wire] = JointTarget.from_deg(base + mirror * rng.uniform(low, high))
+    keyframe = replace(last, name="prepose", targets=targets, set_flag_true=None, source=None)
+    return Motion(name, [keyframe], source_format=stand.source_format, first_phase="prepose")
+
+
+def _stood_scenario(seed: int, rng: random.Random | None = None, library: MotionLibrary | None = None) -> Scenario:
+    """A fresh robot in the walk stance, or in a seeded pose near it when ``rng`` is given."""
+    library = library or default_library(0)
+    skill = PlayMotion("stand")
+    if rng is not None:
+        library.add(prepose(library.get("stand"), rng))
+        skill = PlayMotion("prepose")
+    scenario = Scenario(skill, seed=seed, controller=MotionController(library, load_dynamic_params(), 0))
     scenario.run(STANCE_CYCLES)
     return scenario
 
@@ -122,11 +154,12 @@ def _stood_scenario(seed: int) -> Scenario:
 def lying_trial(side: str, rng: random.Random, seed: int) -> Trial:
     """Lay the standing robot on ``side`` at a random yaw, nudge it, and clock its recovery."""
     yaw = rng.uniform(-180.0, 180.0)
+    twist = rng.uniform(-TWIST_DEG, TWIST_DEG)
     push = _random_vector(rng, PUSH_M_S, horizontal=True)
     spin = _random_vector(rng, SPIN_RAD_S)
     trial = Trial(side, round(yaw, 1), push, spin)
-    scenario = _stood_scenario(seed)
-    scenario.lay_down(side, yaw)
+    scenario = _stood_scenario(seed, rng)
+    scenario.lay_down(side, yaw, twist)
     scenario.push(push, spin)
     return _clock(scenario, trial)
 

@@ -1,7 +1,10 @@
 """Stand-up generator: ``standup_front`` and ``standup_back``, from lying to the walk stance, as XML phases.
 
-A stand-up is three parts, each keyframe symmetric (the right side mirrors the left):
+A stand-up is four parts, each keyframe symmetric (the right side mirrors the left):
 
+0. **Ready**: every joint to the walk stance's angles while still lying (``ready_ms``, stretched by the
+   controller's blending when the fall left the joints far away), so that what follows starts from one
+   known lying configuration whatever pose the fall ended in.
 1. **Ground phases** (``[[<motion>.ground]]`` in the parameter file): joint-space keyframes while the torso
    still lies; they push the torso up with the arms and bring the feet under it. Each one's meaning is
    checked with forward kinematics (``kinematics.fk.NaoKinematics``) in the lying torso's frame: how far
@@ -93,6 +96,8 @@ class StandUpParams:
 
     ground: tuple[GroundPose, ...] = ()
     """Ground-phase keyframes, in order."""
+    ready_ms: int = 200
+    """Duration of the first keyframe, the walk stance's joint angles while lying [ms]."""
     crouch_pitch_deg: float = 30.0
     """Torso lean forward in the crouch [deg]."""
     crouch_height_m: float = 0.27
@@ -347,7 +352,11 @@ def key_poses(params: StandUpParams, side: str, stance: GaitParams, solver: Sagi
     """
     solver = solver or SagittalSolver()
     stance_solver = stance_solver or KeyframeSolver()
-    poses = []
+    stance_solver.ik.reset()
+    stand = stance_pose(stance, stance_solver)
+    depths = solver.prop_depths_m(stand, side)
+    poses = [KeyPose("ready", params.ready_ms, stand, "the walk stance's joint angles, lying: " + ", ".join(
+        f"{group} {depth:+.3f} m" for group, depth in depths.items()), prop_depths_m=depths)]
     for ground in params.ground:
         angles = ground.angles_rad()
         depths = solver.prop_depths_m(angles, side)
@@ -359,8 +368,6 @@ def key_poses(params: StandUpParams, side: str, stance: GaitParams, solver: Sagi
                    if k in ARMS}
     crouch = solver.com_over_soles(params.crouch_pitch_deg, params.crouch_height_m, params.crouch_com_forward_m,
                                    crouch_arms)
-    stance_solver.ik.reset()
-    stand = stance_pose(stance, stance_solver)
     stance_arms = {k: v for k, v in stand.items() if k in ARMS}
     rise_pitch = (params.crouch_pitch_deg + stance.torso_pitch_deg) / 2.0
     rise_height = (params.crouch_height_m + stance.torso_height_m) / 2.0
