@@ -29,7 +29,7 @@ from motion_studio.cmaes import CMAES
 from motion_studio.walk_rollout import run_walk
 
 #: Searched offsets [deg] and bounds.
-BOUNDS = {"le1": (-12.0, 0.0), "le3": (-10.0, 10.0), "le5": (-10.0, 10.0)}
+BOUNDS = {"le1": (-5.0, 0.0), "le3": (-2.0, 2.0), "le5": (-2.0, 2.0)}
 #: Curvature beyond this earns nothing more [deg/m].
 CURVATURE_CAP_DEG_M = 40.0
 TRIAL_S = 10.0
@@ -80,12 +80,31 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--popsize", type=int, default=8)
     parser.add_argument("--checkpoint", type=Path, default=CHECKPOINT)
     parser.add_argument("--write", action="store_true", help="write the best offsets into dynamic_elements.toml")
+    parser.add_argument("--scan", default=None,
+                        help='evaluate these offset sets instead of CMA-ES, e.g. "le1=-2;le1=-3,le3=1"')
     args = parser.parse_args(argv)
     base = load_dynamic_params()
     names = list(BOUNDS)
+    if args.scan:
+        data = {"best": {"loss": float("inf")}, "evaluations": []}
+        for spec in args.scan.split(";"):
+            offsets = {n: 0.0 for n in names}
+            offsets.update({k.strip(): float(v) for k, v in (item.split("=") for item in spec.split(","))})
+            figures = lean_figures(with_offsets(base, offsets))
+            value = loss(figures)
+            data["evaluations"].append({"offsets": offsets, "loss": value, "figures": figures})
+            print(f"{offsets} loss {value:.2f} {figures}", flush=True)
+            if value < data["best"]["loss"]:
+                data["best"] = {"loss": value, "offsets": offsets, "figures": figures}
+        args.generations = 0
+        method = f'--scan "{args.scan}"'
+    else:
+        method = f"--generations {args.generations}"
     low = np.array([BOUNDS[n][0] for n in names])
     span = np.array([BOUNDS[n][1] - BOUNDS[n][0] for n in names])
-    if args.checkpoint.is_file():
+    if args.scan:
+        strategy = CMAES.create(np.full(len(names), 0.5))
+    elif args.checkpoint.is_file():
         data = json.loads(args.checkpoint.read_text())
         strategy = CMAES.from_state(data["cmaes"])
     else:
@@ -117,10 +136,12 @@ def main(argv: list[str] | None = None) -> int:
     if args.write:
         figures = best["figures"]
         lean = replace(with_offsets(base, best["offsets"]).walk_lean, provenance=(
-            f"python -m motion_studio.tune_lean --generations {args.generations} on {datetime.date.today()}: "
+            f"python -m motion_studio.tune_lean {method} on {datetime.date.today()}: "
             f"full lean curvature left {figures['left_curvature_deg_m']} deg/m, right "
             f"{figures['right_curvature_deg_m']} deg/m, half left {figures['half_curvature_deg_m']} deg/m, "
-            f"straight {figures['straight_curvature_deg_m']} deg/m, no falls in 10 s runs of walk_forward; "
+            f"straight {figures['straight_curvature_deg_m']} deg/m, falls "
+            f"{int(sum(figures[k + '_fell'] for k in ('left', 'half', 'straight', 'right')))} in four 10 s runs of "
+            f"walk_forward; "
             f"offsets act on the swing leg (motions.authoring.gait lean names)"))
         # Re-read now: other tuners rewrite their own sections of the same file.
         current = load_dynamic_params()
