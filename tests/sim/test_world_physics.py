@@ -194,3 +194,26 @@ def test_world_view_for_the_referee() -> None:
     world.freeze_joints("left", 1, ["he1"])
     command(world, 0, "he1", 1.0)
     assert world.motors.targets(0)[0] == 0.0
+
+
+def test_midphase_off_changes_no_state() -> None:
+    # The world turns MuJoCo's BVH midphase off for speed; it may only cull geom pairs, never change a contact:
+    # two robots falling onto each other and the ground, with the ball rolling into them, step bit for bit alike.
+    import mujoco
+    states = []
+    for midphase in (False, True):
+        world = standing(2)
+        world.place_robot(1, -9.5, -3.0, 180.0, z_m=0.385)
+        world.set_ball((-9.0, -2.0, 0.3), (-2.0, -2.0, 0.0))
+        if midphase:
+            world.model.opt.disableflags &= ~int(mujoco.mjtDisableBit.mjDSBL_MIDPHASE)
+        touching = 0
+        for _ in range(80):
+            for key in (0, 1):
+                command(world, key, "lle3", 1.5)
+                command(world, key, "rle3", 1.5)
+            cycle(world)
+            touching += bool(world.touching_robot_pairs()) and bool(world.ball_touchers())
+        assert touching > 10
+        states.append(world.data.qpos.tobytes() + world.data.qvel.tobytes())
+    assert states[0] == states[1]
