@@ -25,6 +25,8 @@ import math
 import time
 from dataclasses import dataclass, field
 
+import logging
+
 import mujoco
 import numpy as np
 
@@ -34,6 +36,23 @@ from sim.effectors import MotorBank
 from sim.field import BALL_MASS_KG, BALL_RADIUS_M, add_static_geometry
 from sim.physics_params import PhysicsParams, default_physics_params
 from sim.world_api import RobotState
+
+logger = logging.getLogger(__name__)
+#: MuJoCo's checks that reset the whole world (to the model's initial state) when they trip.
+_RESETTING_WARNINGS = tuple(int(w) for w in (mujoco.mjtWarning.mjWARN_BADQPOS, mujoco.mjtWarning.mjWARN_BADQVEL,
+                                             mujoco.mjtWarning.mjWARN_BADQACC))
+#: A hinge this far past its stop [rad] (11.5 deg; the stops are soft by a few degrees at most) or
+_BLOW_UP_PAST_STOP_RAD = 0.2
+#: turning this fast [rad/s] (motors reach 7, falls about 20) means the robot's physics is blowing up.
+_BLOW_UP_SPEED_RAD_S = 100.0
+
+
+def _log_mujoco_warning(message: str) -> None:
+    """MuJoCo's warnings go to our log (its default handler writes MUJOCO_LOG.TXT into the working folder)."""
+    logger.warning("MuJoCo: %s", message.strip())
+
+
+mujoco.set_mju_user_warning(_log_mujoco_warning)
 
 
 #: Where SimSpark builds a new robot (torso centre, REFERENCE §2.1); facing +y (measured: first vision).
@@ -101,6 +120,8 @@ class World:
         self.motors = MotorBank(self.params)
         self.time_s = 0.0
         self.mujoco_wall_s = 0.0
+        self.divergences = 0
+        """Cycles MuJoCo's physics diverged in and were restarted (see `_recover_from_divergence`)."""
         self._poses_stale = False
         self._templates: dict[int, mujoco.MjSpec] = {}
         """Wall time spent inside mujoco.mj_step [s] (for benchmarks)."""
@@ -390,6 +411,7 @@ class World:
     def step(self) -> None:
         """One cycle of physics (``substeps`` MuJoCo steps), then contact bookkeeping."""
         m, d, motors = self.model, self.data, self.motors
+        cycle_start = _save_state(d)
         for _ in range(self.params.substeps):
             ball_velocity = d.qvel[self.ball_dof:self.ball_dof + 3].copy()
             motors.predict(m, d)
@@ -404,12 +426,80 @@ class World:
                     break
                 motors.re_solves += 1
                 _restore_state(d, saved)
+            if any(d.warning[w].number for w in _RESETTING_WARNINGS):
+                self._recover_from_divergence(cycle_start)
             contacts = self._contact_table()
             self._ball_rebound(ball_velocity, contacts)
+        self._guard_blow_up(cycle_start)
         self.time_s += self.params.cycle_s
         self._contacts(contacts)  # from the step's contacts, with the poses they were found at
         mujoco.mj_kinematics(m, d)
         self._poses_stale = False
+
+    def _guard_blow_up(self, cycle_start: tuple[np.ndarray, ...]) -> None:
+        """Catch a robot whose physics is blowing up before MuJoCo's own check does (it only trips at
+        accelerations of 1e10, cycles later, when the robot is already kilometres away): a hinge far past
+        its stop or spinning far beyond any motor speed. That robot goes back to this cycle's start, at
+        rest, its hinges inside their stops; the others keep their step. Seen on our simulator with a leg driven into the ground while
+        kneeling (the contact and the joint stops are soft against a stiff servo)."""
+        motors = self.motors
+        if motors.qadr.size == 0:
+            return
+        d = self.data
+        angle = d.qpos[motors.qadr]
+        bad = (angle < motors.min_rad - _BLOW_UP_PAST_STOP_RAD) | (angle > motors.max_rad + _BLOW_UP_PAST_STOP_RAD)
+        bad |= np.abs(d.qvel[motors.dof]) > _BLOW_UP_SPEED_RAD_S
+        if not bad.any():
+            return
+        dofs = set(motors.dof[bad].tolist())
+        worst = int(np.flatnonzero(bad)[0])
+        detail = (f"dof {int(motors.dof[worst])} at {math.degrees(angle[worst]):.1f} deg (stops "
+                  f"{math.degrees(motors.min_rad[worst]):.0f}..{math.degrees(motors.max_rad[worst]):.0f}), "
+                  f"{d.qvel[motors.dof[worst]]:.1f} rad/s")
+        for robot in self.by_key.values():
+            first, end = robot.root_dof, robot.root_dof + 6 + len(robot.spec.joints)
+            if not any(first <= dof < end for dof in dofs):
+                continue
+            self.divergences += 1
+            q0, q1 = robot.root_qadr, robot.root_qadr + 7 + len(robot.spec.joints)
+            d.qpos[q0:q1] = cycle_start[0][q0:q1]
+            mine = (motors.dof >= first) & (motors.dof < end)
+            # Inside the stops again, else the same step repeats from the same bad start every cycle.
+            d.qpos[motors.qadr[mine]] = np.clip(d.qpos[motors.qadr[mine]], motors.min_rad[mine], motors.max_rad[mine])
+            d.qvel[first:end] = 0.0
+            d.qacc_warmstart[first:end] = 0.0
+            logger.warning("robot %s: physics blowing up (%s); back to the cycle's start at rest", robot.key,
+                           detail)
+        mujoco.mj_forward(self.model, d)
+
+    def _recover_from_divergence(self, cycle_start: tuple[np.ndarray, ...]) -> None:
+        """MuJoCo found a non-finite or huge position, velocity or acceleration and reset the whole world to
+        its initial state (every robot back at the origin). Go back to this cycle's start instead, with
+        the offending body at rest, so one robot's bad state never scrambles a match."""
+        d = self.data
+        tripped = [w for w in _RESETTING_WARNINGS if d.warning[w].number]
+        dof = int(d.warning[tripped[-1]].lastinfo)
+        for w in tripped:
+            d.warning[w].number = 0
+        self.divergences += 1
+        _restore_state(d, cycle_start)
+        owner = next((r for r in self.by_key.values()
+                      if r.root_dof <= dof < r.root_dof + 6 + len(r.spec.joints)), None)
+        # BADQPOS names a qpos address; a robot's qpos block is one longer than its dof block (quaternion).
+        if owner is None:
+            owner = next((r for r in self.by_key.values()
+                          if r.root_qadr <= dof < r.root_qadr + 7 + len(r.spec.joints)), None)
+        if owner is None:  # the ball
+            d.qvel[self.ball_dof:self.ball_dof + 6] = 0.0
+        else:
+            d.qvel[owner.root_dof:owner.root_dof + 6 + len(owner.spec.joints)] = 0.0
+        bad = ~np.isfinite(d.qvel)
+        if bad.any():  # a non-finite start state (it tripped the check): nothing of it can be kept
+            d.qvel[bad] = 0.0
+        d.qacc_warmstart[:] = 0.0
+        mujoco.mj_forward(self.model, d)
+        logger.warning("physics diverged at dof %d (%s); cycle restarted from its start with it at rest",
+                       dof, "ball" if owner is None else f"robot {owner.key}")
 
     def end_cycle(self) -> None:
         """Bring body poses up to date after the referee's moves, for the perceptors (robot placements
