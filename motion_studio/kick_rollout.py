@@ -19,8 +19,9 @@ from motion_studio.scenarios import Scenario, Truth
 CYCLE_S = 0.02
 #: Cycles of standing in the stance before the ball is placed (the stance is reached and settled).
 SETTLE_CYCLES = 30
-#: The ball counts as touched once it moved this far from its spot [m].
-TOUCH_M = 0.003
+#: The ball counts as struck once it moves faster than this [m/s] (a nudge while the robot shifts its
+#: weight is no strike).
+STRIKE_SPEED_M_S = 0.3
 #: The ball rests when slower than this [m/s] (drag makes its speed decay only exponentially).
 REST_SPEED_M_S = 0.01
 #: A foot moving up faster than this, or the torso faster than TRAP_TORSO_M_S, right at the contact means
@@ -51,7 +52,7 @@ class KickRun:
     kick_heading_deg: float
     """Direction the kick aims at (the robot's heading minus the placement's heading error) [deg]."""
     contact_s: float | None
-    """Time from the kick request to the first ball movement (None: never touched)."""
+    """Time from the kick request to the strike (ball faster than STRIKE_SPEED_M_S; None: never struck)."""
     motion_s: float
     """Time from the kick request to the end of the kick motion (or of the run)."""
     fell: bool
@@ -146,7 +147,7 @@ def run_kick(library: MotionLibrary, motion: str, placement: Placement = Placeme
                                                                            axis=1))) / CYCLE_S
         torso_up = (truth.torso_m[2] - previous_torso_z) / CYCLE_S
         previous_feet, previous_torso_z = feet_now, truth.torso_m[2]
-        if contact_s is None and math.dist(truth.ball_m[:2], spot) > TOUCH_M:
+        if contact_s is None and float(np.linalg.norm(world.ball_velocity())) > STRIKE_SPEED_M_S:
             contact_s, foot_speed_at_contact = elapsed, max(speed_before, foot_speed)
         if contact_s is not None and ball_speed is None and elapsed - contact_s >= 3 * CYCLE_S - 1e-9:
             ball_speed = float(np.linalg.norm(world.ball_velocity()))

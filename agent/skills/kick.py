@@ -8,10 +8,11 @@ knows the spot to stand on for either foot. Lining up, with the motions the libr
 1. far from the spot (more than ``approach_m``): walk to a point behind it on the kick line
    (``agent.skills.walk.WalkTo``);
 2. near it, standing still and with a fresh ball sighting: turn toward the aim (``turn_left`` /
-   ``turn_right``, one turn motion per correction), then correct sideways (``walk_left`` / ``walk_right``)
-   and along the kick line (``walk_forward`` / ``walk_backward``) while the error exceeds half of what one
-   such walk moves (the walks are the walk helper's cyclic gaits: a single request walks a whole start and
-   stop ramp, 0.12 m sideways and 0.35 m forward on our simulator);
+   ``turn_right``, one turn motion per correction), then correct sideways and along the kick line, with a
+   walk (``walk_left`` / ``walk_right`` / ``walk_forward`` / ``walk_backward``) while the error exceeds half
+   of what one short walk moves (the walks are cyclic gaits: a single request walks a whole start and stop
+   ramp, 0.12 m sideways and 0.35 m forward on our simulator), then with the kick steps
+   (``kick_step_left`` ... of ``motions.authoring.kick_steps``: 3-4 cm each);
 3. kick once the ball lies within the kick's tolerance of its spot, or once the corrections are used up and
    it lies within the loose tolerance; else give up (``done`` with ``kicked`` False).
 
@@ -22,6 +23,7 @@ lies; it is chosen anew before each correction.
 
 from __future__ import annotations
 
+import logging
 import math
 from dataclasses import dataclass
 
@@ -31,12 +33,22 @@ from agent.skills.walk import WalkTo, report_walk_odometry
 from agent.world.frames import wrap_angle_rad
 from agent.world_model import WorldModel
 
+logger = logging.getLogger(__name__)
+
 CYCLE_S = 0.02
 KICK, STRONG = "kick", "kick_strong"
 LEFT_SUFFIX = "_left"
 TURN_LEFT, TURN_RIGHT = "turn_left", "turn_right"
 FORWARD, BACKWARD, SIDE_LEFT, SIDE_RIGHT = "walk_forward", "walk_backward", "walk_left", "walk_right"
-ADJUST_WALKS = (FORWARD, BACKWARD, SIDE_LEFT, SIDE_RIGHT)
+STEP_FORWARD, STEP_BACKWARD = "kick_step_forward", "kick_step_backward"
+STEP_LEFT, STEP_RIGHT = "kick_step_left", "kick_step_right"
+
+
+def _step_size(motion: MotionController, name: str, key: str) -> float:
+    """Size of a kick step from its motion constant [m] (0 when the library lacks it)."""
+    if name not in motion.library:
+        return 0.0
+    return abs(float(motion.library.get(name).constants.get(key, 0.0)))
 
 
 @dataclass(frozen=True)
@@ -63,7 +75,7 @@ class KickConfig:
     """Beyond this distance from the kick spot the robot walks to a point behind it first [m]."""
     approach_back_m: float = 0.30
     """That point lies this far behind the kick spot on the kick line [m]."""
-    max_corrections: int = 8
+    max_corrections: int = 10
     """Corrections near the ball before kicking within the loose tolerance or giving up."""
     max_approaches: int = 2
     """Walks to the point behind the spot before the skill corrects with short walks only."""
@@ -173,7 +185,7 @@ class KickToward(Skill):
 
     def _request(self, name: str | None, ball: tuple[float, float] | None = None, **fields: object) -> MotionRequest:
         pitch = self.config.head_pitch_deg if ball is None or math.hypot(*ball) < 0.6 else -25.0
-        yaw = 0.0 if ball is None else max(-60.0, min(60.0, math.degrees(math.atan2(ball[1], max(ball[0], 0.05)))))
+        yaw = 0.0 if ball is None or math.hypot(*ball) < 0.6 else max(-60.0, min(60.0, math.degrees(math.atan2(ball[1], ball[0]))))
         return MotionRequest(name, head_deg=(yaw, pitch), **fields)  # type: ignore[arg-type]
 
     # ---- the cycle ------------------------------------------------------------------------------------
@@ -214,6 +226,9 @@ class KickToward(Skill):
         self.foot = spot.motion
         error_f, error_l = ball[0] - spot.forward_m, ball[1] - spot.left_m
         aim_rad = self._aim_error_rad(world, ball)
+        logger.debug("t=%.2f ball (%.3f, %.3f) spot %s error (%+.3f, %+.3f) aim %+.1f deg corrections %d",
+                     world.now_s, ball[0], ball[1], spot.motion, error_f, error_l, math.degrees(aim_rad),
+                     self.corrections)
         if math.hypot(error_f, error_l) > config.approach_m and self._approaches < config.max_approaches \
                 and FORWARD in motion.library:
             return self._approach(world, ball, spot, aim_rad)
@@ -223,14 +238,9 @@ class KickToward(Skill):
             return self._start_move(TURN_LEFT if aim_rad > 0 else TURN_RIGHT, ball, abs(math.degrees(aim_rad)))
         within = abs(error_f) <= config.forward_tol_m and abs(error_l) <= config.lateral_tol_m
         if not within and can_correct:
-            if abs(error_l) > max(config.lateral_tol_m, config.side_step_m / 2):
-                name = SIDE_LEFT if error_l > 0 else SIDE_RIGHT
-                if name in motion.library:
-                    return self._start_move(name, ball)
-            if error_f > max(config.forward_tol_m, config.forward_step_m / 2) and FORWARD in motion.library:
-                return self._start_move(FORWARD, ball)
-            if -error_f > max(config.forward_tol_m, config.backward_step_m / 2) and BACKWARD in motion.library:
-                return self._start_move(BACKWARD, ball)
+            move = self._correction(motion, error_f, error_l)
+            if move is not None:
+                return self._start_move(move, ball)
         loose = abs(error_f) <= config.loose_forward_m and abs(error_l) <= config.loose_lateral_m
         if within or loose:
             self._kick_motion = spot.motion
@@ -241,6 +251,25 @@ class KickToward(Skill):
         self.reason = (f"ball off the kick spot by ({error_f:+.2f}, {error_l:+.2f}) m and no motion left to "
                        f"correct it")
         return self._request(None, ball)
+
+    def _correction(self, motion: MotionController, error_f: float, error_l: float) -> str | None:
+        """The move that best reduces the ball's offset from its spot: a walk for an error above half of
+        what the walk moves, else a kick step for an error above the tolerance (sideways first: a sideways
+        miss costs more than one along the line)."""
+        config, library = self.config, motion.library
+        lateral = [(SIDE_LEFT if error_l > 0 else SIDE_RIGHT, config.side_step_m)]
+        lateral.append((STEP_LEFT if error_l > 0 else STEP_RIGHT, _step_size(motion, STEP_LEFT, "step_left_m")))
+        along = [(FORWARD, config.forward_step_m) if error_f > 0 else (BACKWARD, config.backward_step_m)]
+        along.append((STEP_FORWARD, _step_size(motion, STEP_FORWARD, "step_forward_m")) if error_f > 0
+                     else (STEP_BACKWARD, _step_size(motion, STEP_BACKWARD, "step_forward_m")))
+        for error, tolerance, moves in ((abs(error_l), config.lateral_tol_m, lateral),
+                                        (abs(error_f), config.forward_tol_m, along)):
+            if error <= tolerance:
+                continue
+            for name, size in moves:
+                if name in library and size > 0 and error > size / 2:
+                    return name
+        return None
 
     def _approach(self, world: WorldModel, ball: tuple[float, float], spot: Spot, aim_rad: float) -> MotionRequest:
         """Walk to a point behind the kick spot on the kick line (team frame through the pose)."""

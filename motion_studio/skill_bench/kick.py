@@ -1,0 +1,300 @@
+"""Kick benchmark on our simulator, with the real agent playing the shipped kick motions and the kick skill.
+
+Trials:
+
+* **motions**: ``kick`` and ``kick_strong`` (feet alternating: ``kick`` / ``kick_left``...), each from the walk
+  stance with the ball at its spot, moved by a small seeded placement error (ball ±2 cm along and
+  ±1.5 cm across the kick line, robot heading ±3°; ``motion_studio.kick_rollout``): rest distance of the
+  ball (mean/min/max), direction error against the aim (deg), falls of the kicker, time from the kick
+  request to the ball contact, trapped balls (the toe ran under the ball and our simulator's stiff contact
+  threw the foot up), ball height.
+* **skill**: ``agent.skills.kick.KickToward`` toward a point 10 m ahead, the robot placed just behind the
+  ball with a larger seeded error (±5 cm, ±10°); the skill lines up from its own world model: time from
+  the skill's start to the contact, distance, direction error, falls, kicks played.
+* **kick challenge** (magmaChallenge v3.2, REFERENCE §8.2): 10 attempts toward (0, 0), the ball at seeded
+  distances from 3 to 12 m in the own half within ±45°, the robot 1 m behind it facing it; KickToward with
+  the strong kick when the ball is farther than halfway between the two kicks' mean distances. An attempt
+  ends when the robot leaves the 2 m circle around the ball's start (+5 m), when the ball has left the
+  circle and stopped, or 7 s after the timing start (the robot within 0.5 m of the ball, or 3 s after the
+  start). Score = mean distance of the resting ball from (0, 0), lower is better.
+
+Targets (issue 6): kick >= 3 m, strong kick >= 5.5 m, aim >= 8 m; no fall of the kicker.
+"""
+
+from __future__ import annotations
+
+import math
+import pathlib
+from collections.abc import Callable
+
+import numpy as np
+
+from agent.motion import MotionController, MotionLibrary, default_library, load_dynamic_params
+from agent.skills.kick import KickToward
+from agent.skills.base import PlayMotion
+from motion_studio.kick_rollout import SETTLE_CYCLES, STRIKE_SPEED_M_S, Placement, ball_spot, run_kick
+from motion_studio.scenarios import Scenario
+
+TARGETS = {"kick_m": 3.0, "kick_strong_m": 5.5, "aim_m": 8.0, "falls": 0}
+KINDS = ("kick", "kick_strong")
+KICKS_PER_KIND, KICKS_PER_KIND_QUICK = 10, 2
+#: Motion trials: uniform placement error half-ranges (forward m, left m, heading deg).
+MOTION_SPREAD = (0.02, 0.015, 3.0)
+#: Skill trials: robot placement error half-ranges around the kick spot (forward m, left m, heading deg).
+SKILL_SPREAD = (0.05, 0.05, 10.0)
+SKILL_TRIALS, SKILL_TRIALS_QUICK = 6, 1
+SKILL_LIMIT_S = 25.0
+SKILL_TARGET_AHEAD_M = 10.0
+#: REFERENCE §8.2 kick challenge.
+CHALLENGE_ATTEMPTS, CHALLENGE_ATTEMPTS_QUICK = 10, 1
+CHALLENGE_CIRCLE_M = 2.0
+CHALLENGE_PENALTY_M = 5.0
+CHALLENGE_NEAR_M = 0.5
+CHALLENGE_WAIT_S = 3.0
+CHALLENGE_TIMEOUT_S = 7.0
+CHALLENGE_BEHIND_M = 1.0
+CYCLE_S = 0.02
+REST_SPEED_M_S = 0.01
+
+
+def _uniform(rng: np.random.Generator, spread: tuple[float, float, float]) -> tuple[float, float, float]:
+    return tuple(float(rng.uniform(-s, s)) for s in spread)  # type: ignore[return-value]
+
+
+def motion_trials(kind: str, count: int, seed: int, library: MotionLibrary,
+                  tick: Callable[[], None]) -> list[dict]:
+    """``count`` kicks of one kind, feet alternating, from seeded placements."""
+    rng = np.random.default_rng([seed, KINDS.index(kind)])
+    trials = []
+    for i in range(count):
+        name = kind if i % 2 == 0 else kind + "_left"
+        forward, left, heading = _uniform(rng, MOTION_SPREAD)
+        run = run_kick(library, name, Placement(forward, left, heading), seed=seed + i)
+        trial = {"motion": name, "placement": [round(forward, 3), round(left, 3), round(heading, 2)], **run.figures()}
+        # Rest position in the aim frame (x along the aim, y to its left) from the ball's start.
+        dx, dy = (b - a for a, b in zip(run.ball_start_m, run.ball_rest_m))
+        aim = math.radians(run.kick_heading_deg)
+        trial["rest_aim_frame_m"] = [round(math.cos(aim) * dx + math.sin(aim) * dy, 3),
+                                     round(-math.sin(aim) * dx + math.cos(aim) * dy, 3)]
+        trials.append(trial)
+        tick()
+    return trials
+
+
+def summary(trials: list[dict]) -> dict:
+    """Mean/min/max distance, direction error, falls and contact times of a list of kick trials."""
+    distances = [t["distance_m"] for t in trials]
+    errors = [abs(t["direction_error_deg"]) for t in trials if t["distance_m"] > 0.05]
+    contacts = [t["contact_s"] for t in trials if t.get("contact_s") is not None]
+    return {
+        "kicks": len(trials),
+        "distance_mean_m": round(float(np.mean(distances)), 2) if distances else 0.0,
+        "distance_min_m": round(float(np.min(distances)), 2) if distances else 0.0,
+        "distance_max_m": round(float(np.max(distances)), 2) if distances else 0.0,
+        "direction_error_mean_abs_deg": round(float(np.mean(errors)), 1) if errors else None,
+        "direction_error_max_abs_deg": round(float(np.max(errors)), 1) if errors else None,
+        "falls": sum(bool(t["fell"]) for t in trials),
+        "missed": sum(t.get("contact_s") is None for t in trials),
+        "trapped": sum(bool(t.get("trapped")) for t in trials),
+        "contact_mean_s": round(float(np.mean(contacts)), 2) if contacts else None,
+    }
+
+
+def _skill_scenario(robot_m: tuple[float, float], heading_deg: float, seed: int, library: MotionLibrary,
+                    ball_m: tuple[float, float] | None = None) -> Scenario:
+    """The robot standing in the walk stance at ``robot_m`` (30 cycles of ``stand``), the ball at ``ball_m``
+    (placed before, so the robot's straight start pose cannot touch a ball placed close)."""
+    controller = MotionController(library, load_dynamic_params())
+    scenario = Scenario(PlayMotion("stand"), robot_m, heading_deg, seed=seed, controller=controller,
+                        recover_falls=False)
+    if ball_m is not None:
+        scenario.place_ball(ball_m)
+    scenario.run(SETTLE_CYCLES)
+    return scenario
+
+
+def skill_run(scenario: Scenario, skill: KickToward, ball_m: tuple[float, float], target_m: tuple[float, float],
+              limit_s: float = SKILL_LIMIT_S) -> dict:
+    """Run KickToward until it is done and the ball rests (or ``limit_s``); figures."""
+    scenario.set_skill(skill)
+    start_s = scenario.truth().time_s
+    contact_s = None
+    fell = False
+    for _ in range(int(limit_s / CYCLE_S)):
+        truth = scenario.run(1)[0]
+        fell = fell or truth.fallen
+        if contact_s is None and float(np.linalg.norm(scenario.world.ball_velocity())) > STRIKE_SPEED_M_S:
+            contact_s = truth.time_s - start_s
+        speed = float(np.linalg.norm(scenario.world.ball_velocity()))
+        if (skill.done or fell) and speed < REST_SPEED_M_S:
+            break
+    rest = scenario.history[-1].ball_m[:2]
+    aim_deg = math.degrees(math.atan2(target_m[1] - ball_m[1], target_m[0] - ball_m[0]))
+    moved = math.dist(rest, ball_m)
+    travel_deg = math.degrees(math.atan2(rest[1] - ball_m[1], rest[0] - ball_m[0])) if moved > 0.05 else aim_deg
+    return {"distance_m": round(moved, 3), "direction_error_deg": round((travel_deg - aim_deg + 180) % 360 - 180, 2),
+            "contact_s": None if contact_s is None else round(contact_s, 2), "fell": fell, "kicked": skill.kicked,
+            "foot": skill.foot, "corrections": skill.corrections, "reason": skill.reason,
+            "time_s": round(scenario.history[-1].time_s - start_s, 2), "ball_rest_m": [round(v, 3) for v in rest]}
+
+
+def skill_trial(error: tuple[float, float, float], strong: bool, seed: int, library: MotionLibrary,
+                limit_s: float = SKILL_LIMIT_S) -> dict:
+    """KickToward toward a point SKILL_TARGET_AHEAD_M ahead, the robot standing at the right foot's kick
+    spot moved by ``error`` (ball forward m, ball left m, robot heading deg off the aim)."""
+    spot = library.get("kick").constants
+    scenario = _skill_scenario((-3.0, 0.0), error[2], seed, library)
+    truth = scenario.truth()
+    ball = ball_spot(truth, spot["ball_forward_m"] + error[0], spot["ball_left_m"] + error[1],
+                     truth.heading_deg - error[2])
+    scenario.place_ball(ball)
+    aim = math.radians(truth.heading_deg - error[2])
+    target = (ball[0] + SKILL_TARGET_AHEAD_M * math.cos(aim), ball[1] + SKILL_TARGET_AHEAD_M * math.sin(aim))
+    return skill_run(scenario, KickToward(*target, strong=strong), ball, target, limit_s)
+
+
+def skill_trials(count: int, seed: int, library: MotionLibrary, tick: Callable[[], None]) -> list[dict]:
+    """KickToward from just behind the ball (right-foot spot), with seeded placement errors."""
+    rng = np.random.default_rng([seed, 7])
+    trials = []
+    for i in range(count):
+        error = _uniform(rng, SKILL_SPREAD)
+        strong = i % 2 == 1
+        trial = skill_trial(error, strong, seed + i, library)
+        trials.append({"strong": strong, "placement": [round(v, 3) for v in error], **trial})
+        tick()
+    return trials
+
+
+def challenge_attempt(distance_m: float, angle_deg: float, strong: bool, seed: int, library: MotionLibrary) -> dict:
+    """One kick-challenge attempt (REFERENCE §8.2) toward (0, 0)."""
+    angle = math.radians(angle_deg)
+    ball = (-distance_m * math.cos(angle), distance_m * math.sin(angle))
+    robot = (ball[0] * (1 + CHALLENGE_BEHIND_M / distance_m), ball[1] * (1 + CHALLENGE_BEHIND_M / distance_m))
+    heading = math.degrees(math.atan2(ball[1] - robot[1], ball[0] - robot[0]))
+    skill = KickToward(0.0, 0.0, strong=strong)
+    scenario = _skill_scenario(robot, heading, seed, library, ball)
+    scenario.set_skill(skill)
+    start_s = scenario.truth().time_s
+    timing_s = None
+    left_circle = penalty = False
+    result = "timeout"
+    for _ in range(int((CHALLENGE_WAIT_S + CHALLENGE_TIMEOUT_S + 12.0) / CYCLE_S)):
+        truth = scenario.run(1)[0]
+        now = truth.time_s - start_s
+        if timing_s is None and (math.dist(truth.torso_m[:2], ball) < CHALLENGE_NEAR_M or now >= CHALLENGE_WAIT_S):
+            timing_s = now
+        if math.dist(truth.torso_m[:2], ball) > CHALLENGE_CIRCLE_M:
+            penalty, result = True, "player left the circle"
+            break
+        left_circle = left_circle or math.dist(truth.ball_m[:2], ball) > CHALLENGE_CIRCLE_M
+        speed = float(np.linalg.norm(scenario.world.ball_velocity()))
+        if left_circle and speed < REST_SPEED_M_S:
+            result = "ball stopped outside the circle"
+            break
+        if not left_circle and timing_s is not None and now - timing_s > CHALLENGE_TIMEOUT_S:
+            result = "ball not out of the circle in time"
+            break
+    rest = scenario.history[-1].ball_m[:2]
+    score = math.hypot(*rest) + (CHALLENGE_PENALTY_M if penalty else 0.0)
+    return {"distance_m": round(distance_m, 2), "angle_deg": round(angle_deg, 1), "strong": strong,
+            "score_m": round(score, 3), "end": result, "kicked": skill.kicked, "fell": any(t.fallen for t in scenario.history),
+            "ball_rest_m": [round(v, 3) for v in rest], "moved_m": round(math.dist(rest, ball), 2)}
+
+
+def challenge(count: int, seed: int, library: MotionLibrary, strong_from_m: float,
+              tick: Callable[[], None]) -> dict:
+    """The kick challenge: attempts at seeded distances rising from 3 to 12 m, seeded angles."""
+    rng = np.random.default_rng([seed, 11])
+    distances = np.linspace(3.0, 12.0, count) if count > 1 else np.array([4.0])
+    attempts = []
+    for i, distance in enumerate(distances):
+        angle = float(rng.uniform(-45.0, 45.0))
+        attempts.append(challenge_attempt(float(distance), angle, float(distance) > strong_from_m, seed + i, library))
+        tick()
+    return {"score_m": round(float(np.mean([a["score_m"] for a in attempts])), 3), "attempts": attempts,
+            "strong_from_m": round(strong_from_m, 2)}
+
+
+def run(quick: bool = False, seed: int = 0, progress: Callable[[int, int], None] | None = None) -> dict:
+    """The kick figures (see the module docstring); JSON-ready."""
+    library = default_library()
+    per_kind = KICKS_PER_KIND_QUICK if quick else KICKS_PER_KIND
+    skills = SKILL_TRIALS_QUICK if quick else SKILL_TRIALS
+    attempts = CHALLENGE_ATTEMPTS_QUICK if quick else CHALLENGE_ATTEMPTS
+    total = per_kind * len(KINDS) + skills + attempts
+    done = 0
+
+    def tick() -> None:
+        nonlocal done
+        done += 1
+        if progress is not None:
+            progress(done, total)
+
+    motions = {kind: motion_trials(kind, per_kind, seed, library, tick) for kind in KINDS}
+    summaries = {kind: summary(trials) for kind, trials in motions.items()}
+    skill = skill_trials(skills, seed, library, tick)
+    skill_summary = summary(skill)
+    skill_summary["kicked"] = sum(t["kicked"] for t in skill)
+    strong_from = (summaries["kick"]["distance_mean_m"] + summaries["kick_strong"]["distance_mean_m"]) / 2
+    kick_challenge = challenge(attempts, seed, library, strong_from, tick)
+    kick, strong = summaries["kick"], summaries["kick_strong"]
+    passed = {
+        "kick_m": kick["distance_mean_m"] >= TARGETS["kick_m"],
+        "kick_strong_m": strong["distance_mean_m"] >= TARGETS["kick_strong_m"],
+        "aim_m": strong["distance_mean_m"] >= TARGETS["aim_m"],
+        "falls": kick["falls"] + strong["falls"] + skill_summary["falls"] <= TARGETS["falls"],
+    }
+    return {"quick": quick, "seed": seed, "score": kick_challenge["score_m"],
+            "score_kind": "magmaChallenge kick challenge (REFERENCE 8.2): mean rest distance from (0, 0) [m], lower "
+                          "is better",
+            "targets": TARGETS, "passed": passed, "kick": kick, "kick_strong": strong, "skill": skill_summary,
+            "challenge": kick_challenge, "trials": {**motions, "skill": skill}}
+
+
+def plot(result: dict, out_dir: pathlib.Path) -> list[pathlib.Path]:
+    """kick.png: ball rest positions in the aim frame (top view) per kick type, and the distance histogram."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    out_dir.mkdir(parents=True, exist_ok=True)
+    fig, (ax_top, ax_hist) = plt.subplots(1, 2, figsize=(13, 5))
+    colours = {"kick": "tab:blue", "kick_strong": "tab:red"}
+    for kind in KINDS:
+        trials = result["trials"][kind]
+        xs = [t["rest_aim_frame_m"][0] for t in trials]
+        ys = [t["rest_aim_frame_m"][1] for t in trials]
+        falls = [t["fell"] for t in trials]
+        ax_top.scatter(xs, ys, color=colours[kind], label=f"{kind} (mean {result[kind]['distance_mean_m']} m)",
+                       marker="o")
+        ax_top.scatter([x for x, f in zip(xs, falls) if f], [y for y, f in zip(ys, falls) if f], color="k",
+                       marker="x", label="kicker fell" if kind == "kick" and any(falls) else None)
+    for target, style in ((TARGETS["kick_m"], ":"), (TARGETS["kick_strong_m"], "--"), (TARGETS["aim_m"], "-.")):
+        ax_top.axvline(target, color="0.5", ls=style, lw=1)
+    ax_top.scatter([0], [0], color="orange", s=60, label="ball start")
+    ax_top.set_xlabel("along the aim [m]")
+    ax_top.set_ylabel("left of the aim [m]")
+    ax_top.set_title("ball rest positions (top view, aim frame)")
+    ax_top.axis("equal")
+    ax_top.legend(fontsize=8)
+    bins = np.linspace(0, max(1.0, max(t["distance_m"] for k in KINDS for t in result["trials"][k])) + 0.5, 20)
+    for kind in KINDS:
+        ax_hist.hist([t["distance_m"] for t in result["trials"][kind]], bins=bins, alpha=0.6, color=colours[kind],
+                     label=kind)
+    for target, style, name in ((TARGETS["kick_m"], ":", "kick target"), (TARGETS["kick_strong_m"], "--", "strong target"),
+                                (TARGETS["aim_m"], "-.", "aim")):
+        ax_hist.axvline(target, color="0.4", ls=style, lw=1, label=name)
+    ax_hist.set_xlabel("rest distance [m]")
+    ax_hist.set_ylabel("kicks")
+    ax_hist.set_title(f"distance (challenge score {result['score']} m)")
+    ax_hist.legend(fontsize=8)
+    fig.tight_layout()
+    path = out_dir / "kick.png"
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return [path]
+
+
+__all__ = ["TARGETS", "challenge", "motion_trials", "plot", "run", "skill_run", "skill_trial", "summary"]
