@@ -41,8 +41,9 @@ logger = logging.getLogger(__name__)
 #: MuJoCo's checks that reset the whole world (to the model's initial state) when they trip.
 _RESETTING_WARNINGS = tuple(int(w) for w in (mujoco.mjtWarning.mjWARN_BADQPOS, mujoco.mjtWarning.mjWARN_BADQVEL,
                                              mujoco.mjtWarning.mjWARN_BADQACC))
-#: A hinge this far past its stop [rad] (11.5 deg; the stops are soft by a few degrees at most) or
-_BLOW_UP_PAST_STOP_RAD = 0.2
+#: A hinge this far past its stop [rad] (34 deg; a hard fall pushes a soft stop ~25 deg at ~25 rad/s,
+#: the start of a blow-up was 42 deg past at 45 rad/s, then 400 rad/s a cycle later) or
+_BLOW_UP_PAST_STOP_RAD = 0.6
 #: turning this fast [rad/s] (motors reach 7, falls about 20) means the robot's physics is blowing up.
 _BLOW_UP_SPEED_RAD_S = 100.0
 
