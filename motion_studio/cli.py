@@ -23,6 +23,7 @@ COMMAND_MODULES = (
     "motion_studio.commands.serve",
     "motion_studio.commands.edit",
     "motion_studio.commands.bench_skills",
+    "motion_studio.commands.play",
 )
 
 
