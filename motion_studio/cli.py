@@ -24,6 +24,7 @@ COMMAND_MODULES = (
     "motion_studio.commands.edit",
     "motion_studio.commands.bench_skills",
     "motion_studio.commands.play",
+    "motion_studio.commands.tune",
 )
 
 

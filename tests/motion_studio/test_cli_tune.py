@@ -1,0 +1,32 @@
+"""``motion-studio tune``: one entry point for the tuners; options after the target reach the tuner."""
+
+from __future__ import annotations
+
+from typer.testing import CliRunner
+
+from motion_studio.cli import _register_commands, app
+from motion_studio.commands.tune import TUNERS
+
+
+def _run(*args: str):
+    _register_commands()
+    return CliRunner().invoke(app, ["tune", *args])
+
+
+def test_an_unknown_target_lists_the_known_ones():
+    result = _run("fly")
+    assert result.exit_code == 2
+    assert "gait" in result.output and "standup" in result.output
+
+
+def test_options_after_the_target_go_to_its_tuner():
+    result = _run("turn", "--help")
+    assert result.exit_code == 0
+    assert "--write" in result.output and "--min-gain" in result.output
+
+
+def test_every_target_has_a_tuner_with_main():
+    import importlib
+
+    for module, _ in TUNERS.values():
+        assert callable(importlib.import_module(module).main)
