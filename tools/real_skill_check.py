@@ -32,6 +32,7 @@ import gzip
 import json
 import math
 import os
+import re
 import subprocess
 import sys
 import tempfile
@@ -171,6 +172,8 @@ class Run:
     self_collisions: int = 0
     """Self-colliding box pairs summed over the cycles (the real server prints each as ANALYSECOLLISIONS;
     ours: sim.rules.self_collision.colliding_pairs on the same poses)."""
+    replies: dict[int, bytes] = field(default_factory=dict)
+    """Our simulator's run: the agent's answer to each sense message (-1: the connect message)."""
     bad_messages: int = 0
     """Sense messages our agent rejected (ProtocolError; answered with (syn) as agent.runner does)."""
     fouls: int = 0
@@ -234,10 +237,22 @@ def run_sim(case: Case) -> Run:
     host = InProcessHost(engine)
     inner, behavior = _behavior(case)
     agent = Agent(AgentConfig(TEAM, UNUM, 0, say=False), behavior)
-    key = host.add(agent)
+    run = Run("sim", [])
+    replies = run.replies
+
+    class Recorded:  # the agent, its answers kept by message index
+        def connect_message(self) -> bytes:
+            replies[-1] = agent.connect_message()
+            return replies[-1]
+
+        def step(self, sense: bytes) -> bytes:
+            index = len(replies) - 1
+            replies[index] = agent.step(sense)
+            return replies[index]
+
+    key = host.add(Recorded())
     world = engine.world
     skill_cycle = CONNECT_CYCLES + SETTLE_CYCLES
-    run = Run("sim", [])
     done: dict[str, int] = {}
     blow_ups = world.divergences
     while agent.world.game.cycles < skill_cycle + case.cycles:
@@ -274,8 +289,33 @@ def _completions(run: Run, inner: SkillBehavior, done: dict[str, int], index: in
             done[name] = count
 
 
-def run_real(case: Case, workdir: Path) -> tuple[Run, list[dict]]:
-    """The case on the real server; returns the run and the trace lines (send/recv/meta/truth)."""
+class ScriptedAgent:
+    """Sends recorded answers (message index -> bytes, -1 = the connect message) instead of thinking."""
+
+    def __init__(self, replies: dict[int, bytes]) -> None:
+        self.replies = replies
+        self.received = 0
+
+    def connect_message(self) -> bytes:
+        return self.replies[-1]
+
+    def step(self, sense: bytes) -> bytes:
+        self.received += 1
+        return self.replies.get(self.received - 1, b"(syn)")
+
+
+def _game_time_s(sense: bytes) -> float:
+    """Game time of a sense message while in PlayOn, else 0 (which monitor frame it matches is then unknown)."""
+    start = sense.find(b"(GS ")
+    end = sense.find(b"))", start)
+    gs = sense[start:end + 2] if start >= 0 and end >= 0 else b""
+    found = re.search(rb"\(t ([0-9.]+)\)", gs)
+    return float(found.group(1)) if found and b"(pm PlayOn)" in gs else 0.0
+
+
+def run_real(case: Case, workdir: Path, script: dict[int, bytes] | None = None) -> tuple[Run, list[dict]]:
+    """The case on the real server; returns the run and the trace lines (send/recv/meta/truth). With
+    ``script`` (e.g. ``run_sim(case).replies``) the recorded answers are sent instead of our agent's."""
     from sim.replay import read_log
 
     server = RealServer(workdir / f"server_{case.name}.log")
@@ -284,7 +324,7 @@ def run_real(case: Case, workdir: Path) -> tuple[Run, list[dict]]:
         monitor = MonitorLink()
         sock = connect(3100)
         inner, behavior = _behavior(case)
-        agent = Agent(AgentConfig(TEAM, UNUM, 0, say=False), behavior)
+        agent = Agent(AgentConfig(TEAM, UNUM, 0, say=False), behavior) if script is None else ScriptedAgent(script)
         lines: list[dict] = []
         move_cycle, skill_cycle = CONNECT_CYCLES, CONNECT_CYCLES + SETTLE_CYCLES
         total = skill_cycle + case.cycles
@@ -309,7 +349,7 @@ def run_real(case: Case, workdir: Path) -> tuple[Run, list[dict]]:
                 # a full state every cycle: diffs carry a transform only when an element moved by > 0.005,
                 # so their poses lag by up to 5 mm; full states are exact (6 significant digits)
                 monitor.send("(reqfullstate)")
-            if i == skill_cycle:
+            if i == skill_cycle and script is None:
                 inner.set_skill(case.make_skill())
                 behavior.start_cycle = behavior.cycle + 1
             try:
@@ -318,7 +358,7 @@ def run_real(case: Case, workdir: Path) -> tuple[Run, list[dict]]:
                 run.bad_messages += 1
                 (workdir / f"bad_sense_{case.name}_{i}.txt").write_text(f"{error}\n{payload.decode()}\n")
                 reply = b"(syn)"
-            game_times.append(agent.world.game.game_time_s if agent.world.game.play_mode == "PlayOn" else 0.0)
+            game_times.append(_game_time_s(payload))
             if i >= skill_cycle:
                 _completions(run, inner, done, i - skill_cycle)
             else:
@@ -355,7 +395,7 @@ def run_real(case: Case, workdir: Path) -> tuple[Run, list[dict]]:
     lines.insert(0, {"k": "meta", "case": case.name, "motions": MOTIONS_REVISION, "position_m": list(case.position_m),
                      "heading_deg": case.heading_deg, "ball_m": list(case.ball_m) if case.ball_m else None,
                      "move_cycle": move_cycle, "trainer": trainer_commands(case), "skill_cycle": skill_cycle,
-                     "fall": case.fall,
+                     "fall": case.fall, "commands": "our agent" if script is None else "our agent on our simulator",
                      "server": "rcssserver3d 0.7.3 (sync, not real time)", "tool": "tools/real_skill_check.py"})
     # truths_all[i] is the state message i reports; the simulator's truth after the cycle that delivered
     # message i is one step later (sim.engine delivers, then steps), so line the real run up with it
@@ -479,6 +519,9 @@ def main() -> None:
     parser.add_argument("--fixture", type=Path, help="write each real trace into this folder")
     parser.add_argument("--out", type=Path, default=Path("out/real_skill_check"), help="server and monitor logs")
     parser.add_argument("--json", type=Path, help="also write the figures as JSON")
+    parser.add_argument("--replay-sim", action="store_true",
+                        help="send the answers our agent gave on our simulator to the real server (the same "
+                             "joint commands on both: physics alone compared)")
     parser.add_argument("--motions", default="HEAD",
                         help="git revision of motions/files and motions/params to play (default HEAD: the "
                              "committed motions); 'worktree' = the files as they are now")
@@ -503,10 +546,15 @@ def main() -> None:
     results = {"motions": revision}
     for name in args.cases or list(CASES):
         case = CASES[name]
-        real_run, lines = run_real(case, args.out)
+        if args.replay_sim:  # physics alone: our agent's answers on our simulator, sent to both
+            sim_run = run_sim(case)
+            real_run, lines = run_real(case, args.out, script=sim_run.replies)
+        else:
+            real_run, lines = run_real(case, args.out)
+            sim_run = run_sim(case)
         if args.fixture:
-            write_fixture(lines, args.fixture / f"real_0.7.3_skill_{name}.jsonl.gz")
-        sim_run = run_sim(case)
+            suffix = "_simcmds" if args.replay_sim else ""
+            write_fixture(lines, args.fixture / f"real_0.7.3_skill_{name}{suffix}.jsonl.gz")
         real, sim = figures(real_run, case), figures(sim_run, case)
         results[name] = {"real": real, "sim": sim}
         print(table(case, real, sim), flush=True)
