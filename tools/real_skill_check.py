@@ -113,6 +113,11 @@ class Case:
     recover_falls: bool = False
     walk_cycles: int | None = None
     """For a walk: the cycles it is requested (the rest is its stop)."""
+    motion: str | None = None
+    """The motion the case needs (cases whose motion the library lacks are skipped)."""
+    kick: bool = False
+    """The ball goes where the motion's constants ``ball_forward_m``/``ball_left_m`` want it (robot frame, walk
+    stance; the stand before the kick moves the torso STAND_SHIFT_M forward)."""
 
 
 def _walk(name: str, seconds: float = 10.0, stop_s: float = 2.0) -> Case:
@@ -133,6 +138,24 @@ CASES: dict[str, Case] = {
     "standup_back": Case("standup_back", StandUp, 500, fall="back"),
     "standup_front": Case("standup_front", StandUp, 500, fall="front"),
 }
+#: Torso moved forward by the stand motion from the zero pose [m] (measured: real 0.032, ours 0.033).
+STAND_SHIFT_M = 0.032
+STAND_CYCLES = 60
+
+
+def _kick(name: str) -> Case:
+    return Case(name, lambda: SkillSequence((PlayMotion("stand"), STAND_CYCLES), (PlayMotion(name), None),
+                                            (None, None)), STAND_CYCLES + 300, motion=name, kick=True)
+
+
+for _name in ("kick", "kick_left", "kick_strong", "kick_strong_left"):
+    CASES[_name] = _kick(_name)
+for _case in list(CASES.values()):
+    if _case.motion is None and _case.name in ("stand", "turn_left", "turn_right", "walk_forward", "walk_backward",
+                                               "walk_left", "walk_right"):
+        CASES[_case.name] = replace(_case, motion=_case.name)
+CASES["standup_back"] = replace(CASES["standup_back"], motion="standup_back")
+CASES["standup_front"] = replace(CASES["standup_front"], motion="standup_front")
 
 #: Raw joint velocities [rad/s] by cycle of the skill phase that knock the robot over: both hips at 3 rad/s tip it
 #: onto its back (as tests/sim/fixtures/real_0.7.3_fall); hips at -1.5 and ankles at -3 rad/s onto its front.
@@ -214,13 +237,29 @@ def _behavior(case: Case) -> tuple[SkillBehavior, FallThenSkill]:
     return inner, FallThenSkill(inner, case.fall)
 
 
+def library():  # noqa: ANN201 - agent.motion.MotionLibrary
+    from agent.motion import default_library
+
+    return default_library(0, MOTIONS_DIR / "files" if MOTIONS_DIR is not None else None)
+
+
+def kick_ball_m(case: Case) -> tuple[float, float]:
+    """Field position of the ball for a kick case, from the motion's constants (robot frame)."""
+    constants = library().get(case.motion).constants
+    forward = float(constants["ball_forward_m"]) + STAND_SHIFT_M
+    left = float(constants["ball_left_m"])
+    c, s = math.cos(math.radians(case.heading_deg)), math.sin(math.radians(case.heading_deg))
+    return case.position_m[0] + c * forward - s * left, case.position_m[1] + s * forward + c * left
+
+
 def trainer_commands(case: Case) -> list[str]:
     """What the monitor sends at the move cycle (both servers): the move (trainer ``move`` angle = heading -
     90 deg for the left team, as beam adds -90), the ball, PlayOn."""
     x, y = case.position_m
     commands = [f"(agent (unum {UNUM})(team Left)(move {x} {y} 0.4 {case.heading_deg - 90.0}))"]
-    if case.ball_m is not None:
-        commands.append(f"(ball (pos {case.ball_m[0]} {case.ball_m[1]} 0.042)(vel 0 0 0))")
+    ball = kick_ball_m(case) if case.kick else case.ball_m
+    if ball is not None:
+        commands.append(f"(ball (pos {ball[0]:.4f} {ball[1]:.4f} 0.042)(vel 0 0 0))")
     commands.append("(playMode PlayOn)")
     return commands
 
@@ -462,8 +501,11 @@ def figures(run: Run, case: Case) -> dict[str, float | str]:
             len(turns) - 1)
         out["turn rate [deg/s]"] = sum(per) / (turns[-1] * CYCLE_S)
         out["drift [m]"] = math.dist(first.torso_m[:2], end.torso_m[:2])
-    if case.ball_m is not None and not math.isnan(first.ball_m[0]):
+    if (case.ball_m is not None or case.kick) and not math.isnan(first.ball_m[0]):
         out["ball moved [m]"] = math.dist(first.ball_m[:2], truths[-1].ball_m[:2])
+        if case.kick:
+            dx, dy = truths[-1].ball_m[0] - first.ball_m[0], truths[-1].ball_m[1] - first.ball_m[1]
+            out["ball direction [deg]"] = _wrap(math.degrees(math.atan2(dy, dx)) - first.heading_deg)
     if case.fall:
         stood = next((i for i, t in enumerate(run.truths) if t is not None and fall is not None and i > fall
                       and all(u is not None and u.up_z > 0.9 for u in run.truths[i:i + 25])), None)
@@ -544,8 +586,12 @@ def main() -> None:
     MOTIONS_REVISION = revision
     print(f"motions: {revision}", flush=True)
     results = {"motions": revision}
+    available = library()
     for name in args.cases or list(CASES):
         case = CASES[name]
+        if case.motion is not None and case.motion not in available:
+            print(f"{name}: skipped (no motion {case.motion!r} at {revision})", flush=True)
+            continue
         if args.replay_sim:  # physics alone: our agent's answers on our simulator, sent to both
             sim_run = run_sim(case)
             real_run, lines = run_real(case, args.out, script=sim_run.replies)
