@@ -222,10 +222,8 @@ def test_same_commands_same_leg_up_to_the_first_step() -> None:
     assert upright(run.ours, cycles)
 
 
-@pytest.mark.xfail(strict=True, reason="measured disagreement (sim bug): with the same commands, our left knee "
-                   "moves +33 deg and the hip pitch -14 deg in the one step from skill cycle 33 to 34 (knee "
-                   "commanded +6.14 rad/s = +7.0 deg a step; the real knee moves +7.0) as the swing foot lands; "
-                   "our robot then falls at 1.6 s, the real one walks on until the later (reactive) commands")
+# Was a strict xfail: our left knee moved +33 deg in one step (a motor held at its bound pushed on past its
+# target velocity, to 29 rad/s); fixed in sim.effectors.MotorBank.check (a held motor that overshoots brakes).
 def test_same_commands_same_knee_at_the_first_landing() -> None:
     run = replay("walk_forward_simcmds")
     step = run.meta["skill_cycle"] + 34

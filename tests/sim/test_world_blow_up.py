@@ -22,7 +22,9 @@ def test_a_joint_spinning_past_its_stop_is_reset_and_the_other_robot_keeps_its_s
     start_other = world.data.qpos[q1].copy()
     motors = world.motors
     ankle = int(np.flatnonzero(motors.dof == world.by_key[0].root_dof + 6 + 10)[0])  # llj5, ankle pitch
-    world.data.qvel[motors.dof[ankle]] = 400.0  # rad/s: 8 rad (460 deg) in one 20 ms step
+    # What a blow-up looks like a cycle before it runs away: 57 deg past the stop, spinning at 400 rad/s.
+    world.data.qpos[motors.qadr[ankle]] = motors.max_rad[ankle] + 1.0
+    world.data.qvel[motors.dof[ankle]] = 400.0
     cycle(world)
     assert world.divergences == 1
     assert np.all(world.data.qvel[v0] == 0.0)
