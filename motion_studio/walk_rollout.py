@@ -16,6 +16,9 @@ from agent.skills.base import PlayMotion
 from motion_studio.scenarios import Scenario, Truth
 
 CYCLE_S = 0.02
+#: Where walk runs put the ball: by the touch line, off every walk's path (left at the centre spot, it lay
+#: under a robot started there and on the forward runs' line) [m].
+BALL_AWAY_M = (0.0, 9.8)
 
 
 @dataclass(frozen=True)
@@ -123,7 +126,8 @@ def make_controller(library: MotionLibrary, dynamic: DynamicParams | None = None
 
 def run_walk(library: MotionLibrary, motion: str, duration_s: float, *, position_m: tuple[float, float] = (-13.5, 0.0),
              heading_deg: float = 0.0, lean: float = 0.0, pushes: Sequence[Push] = (), stop_s: float = 2.0,
-             x_limit_m: float | None = 14.5, dynamic: DynamicParams | None = None, seed: int = 0) -> WalkRun:
+             x_limit_m: float | None = 14.5, dynamic: DynamicParams | None = None, seed: int = 0,
+             ball_m: tuple[float, float] | None = BALL_AWAY_M) -> WalkRun:
     """Play ``motion`` for ``duration_s`` (or until a fall or the torso passes ``x_limit_m``), then request no
     motion for ``stop_s`` (the walk finalizes into its stop phases).
 
@@ -134,7 +138,7 @@ def run_walk(library: MotionLibrary, motion: str, duration_s: float, *, position
     controller = make_controller(library, dynamic)
     request = {"lean": lean} if lean else {}
     scenario = Scenario(PlayMotion(motion, repeat=True, **request), position_m=position_m, heading_deg=heading_deg,
-                        controller=controller, recover_falls=False, seed=seed)
+                        controller=controller, recover_falls=False, seed=seed, ball_m=ball_m)
     truths: list[Truth] = []
     fall_cycle = None
     pending = sorted(pushes, key=lambda p: p.time_s)
@@ -165,4 +169,4 @@ def run_walk(library: MotionLibrary, motion: str, duration_s: float, *, position
     return WalkRun(motion, lean, truths, walk_cycles, fall_cycle, heading_deg)
 
 
-__all__ = ["Push", "WalkRun", "make_controller", "run_walk"]
+__all__ = ["BALL_AWAY_M", "Push", "WalkRun", "make_controller", "run_walk"]

@@ -25,7 +25,7 @@ from collections.abc import Callable
 from agent.motion import MotionLibrary, default_library
 from agent.skills.walk import WalkTo
 from motion_studio.scenarios import Scenario, Truth
-from motion_studio.walk_rollout import CYCLE_S, WalkRun, run_walk
+from motion_studio.walk_rollout import BALL_AWAY_M, CYCLE_S, WalkRun, run_walk
 
 TARGETS = {"speed_floor_m_s": 0.45, "speed_aim_m_s": 0.70, "falls_20m": 0, "walk_to_error_m": 0.3}
 #: REFERENCE §8.1 run challenge.
@@ -102,7 +102,7 @@ def walk_to_trial(start: tuple[float, float, float], target: tuple[float, float]
         from motion_studio.walk_rollout import make_controller
         controller = make_controller(library)
     scenario = Scenario(skill, position_m=start[:2], heading_deg=start[2], seed=seed, controller=controller,
-                        recover_falls=False)
+                        recover_falls=False, ball_m=BALL_AWAY_M)
     truths: list[Truth] = scenario.run(int(WALK_TO_LIMIT_S / CYCLE_S), stop=lambda t: skill.done or t.fallen)
     end = truths[-1]
     return {"start": list(start), "target": list(target), "done": skill.done, "reached": skill.reached,
