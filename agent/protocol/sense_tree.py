@@ -15,7 +15,7 @@ from __future__ import annotations
 from collections.abc import Callable
 
 from agent.protocol.errors import ProtocolError
-from agent.protocol.numbers import parse_finite_float, parse_int
+from agent.protocol.numbers import parse_finite_float, parse_float, parse_int
 from agent.protocol.perceptors import (
     SEE_LINE,
     SEE_MYPOS,
@@ -189,9 +189,12 @@ def _hear(node: Node, text: str) -> tuple[Hear, int]:
 
 
 def _polar(item: object, text: str, owner: Node) -> Polar:
+    """A ``(pol d theta phi)``. NaN and Inf are kept as sent: the real 0.7.3 server writes ``(pol nan nan
+    nan)`` for a line end it cannot project (seen with a robot lying on its front); rejecting the message
+    would lose the whole cycle, joints included. The world model drops such sightings."""
     if not isinstance(item, Node) or not item or item[0] != "pol":
         raise _error(f"{owner[0]}: expected (pol d theta phi)", text, getattr(item, "offset", owner.offset))
-    return Polar(*_floats(item, 3, text))
+    return Polar(*(parse_float(atom, atom.offset, text) for atom in _atoms(item, 3, text)))
 
 
 def _see(node: Node, text: str) -> tuple[See, int]:

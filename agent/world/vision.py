@@ -140,6 +140,10 @@ class _Projector:
         return (self.offset[0] + gy, self.offset[1] - gx)
 
 
+def _finite(*values: float) -> bool:
+    return all(math.isfinite(value) for value in values)
+
+
 def vision_frame(see: See, time_s: float, tilt: mat3.Matrix, cam_rotation: mat3.Matrix,
                  cam_position: mat3.Vector, camera_height_m: float, own_team: str | None,
                  own_unum: int | None) -> VisionFrame:
@@ -157,6 +161,8 @@ def vision_frame(see: See, time_s: float, tilt: mat3.Matrix, cam_rotation: mat3.
     landmarks: dict[str, GroundObservation] = {}
     ball = None
     for obj in see.objects:
+        if not _finite(obj.distance_m, obj.azimuth_deg, obj.elevation_deg):
+            continue  # the real server can send (pol nan nan nan); such a sighting tells nothing
         if obj.name == "B":
             ball = projector.ground(obj.distance_m, obj.azimuth_deg, obj.elevation_deg, BALL_RADIUS_M)
         else:
@@ -168,7 +174,7 @@ def vision_frame(see: See, time_s: float, tilt: mat3.Matrix, cam_rotation: mat3.
     for player in see.players:
         if player.team == own_team and player.unum == own_unum:
             continue
-        parts = player.parts
+        parts = {name: polar for name, polar in player.parts.items() if _finite(*polar)}
         if "head" in parts:
             forward, left = projector.free(*parts["head"])
         else:
@@ -179,5 +185,6 @@ def vision_frame(see: See, time_s: float, tilt: mat3.Matrix, cam_rotation: mat3.
             left = sum(p[1] for p in points) / len(points)
         players.append(SeenPlayer(player.team, player.unum, forward, left, tuple(parts)))
     point = projector.ground_point
-    lines = [(point(*line.begin), point(*line.end)) for line in see.lines]
+    lines = [(point(*line.begin), point(*line.end)) for line in see.lines
+             if _finite(*line.begin) and _finite(*line.end)]
     return VisionFrame(time_s, camera_height_m, projector.offset, landmarks, ball, tuple(players), tuple(lines))

@@ -297,3 +297,32 @@ def test_foot_sensors_without_their_anchor_joint_follow_the_joints() -> None:
     assert format_sense(without_anchor) == (
         b"(HJ (n hj1) (ax 0.50))(FRP (n rf1) (c 0.00 0.00 0.00) (f 0.00 0.00 1.00))"
     )
+
+
+def test_a_real_nan_line_end_parses_and_round_trips() -> None:
+    """The real 0.7.3 server sent ``(L (pol 12.93 -60.32 -26.81) (pol nan nan nan))`` for a robot lying on
+    its front: the message parses (the agent keeps its joints for that cycle), the values stay as sent."""
+    import math
+    from pathlib import Path
+
+    from agent.protocol import format_sense
+
+    data = (Path(__file__).parent / "fixtures" / "real_0.7.3_see_pol_nan.txt").read_bytes().strip()
+    sense = parse_sense(data)
+    assert any(math.isnan(line.end.distance_m) for line in sense.see.lines)
+    assert sense.joints and format_sense(sense) == data
+
+
+def test_the_world_model_drops_non_finite_sightings() -> None:
+    import math
+    from pathlib import Path
+
+    from agent.world_model import WorldModel
+
+    data = (Path(__file__).parent / "fixtures" / "real_0.7.3_see_pol_nan.txt").read_bytes().strip()
+    world = WorldModel("Check", 1)
+    world.update(parse_sense(data))
+    frame = world.last_vision
+    assert frame is not None
+    assert len(frame.lines) == len(parse_sense(data).see.lines) - 1
+    assert all(all(map(math.isfinite, (*a, *b))) for a, b in frame.lines)
