@@ -167,7 +167,7 @@ class SimEngine:
         self._outbox: dict[int, bytes] = {}
         self._hears: dict[int, list[Hear]] = {}
         self._bank_positions: dict[tuple[int, int], dict[str, int]] = {}
-        self._usual_bank_positions: dict[tuple[int, int, tuple[str, ...]], np.ndarray | None] = {}
+        self._usual_bank_positions: dict[tuple[int, int, tuple[str, ...]], tuple[np.ndarray, bool] | None] = {}
         self._see_writer = SeeWriter(VISIBLE_PARTS)
         # The plain (GS ...) of the last cycle and what it was written from (it rarely changes).
         self._game_state: tuple[tuple[Any, ...], bytes] = ((), b"")
@@ -260,15 +260,17 @@ class SimEngine:
         motor_value: list[float] = []
         index_arrays: list[np.ndarray] = []   # the usual path: one cached position array per message
         value_lists: list[float] = []
+        whole_blocks = 0                      # of those, arrays that command every joint of their robot
         for link in list(self.agents.values()):
             pending = link.pending
             if not pending:
                 continue
             link.pending = []
             if len(pending) == 1 and type(pending[0]) is _JointCommands:   # the usual cycle: one joint message
-                positions = self._usual_positions(link, pending[0].names)
-                if positions is not None:
-                    index_arrays.append(positions)
+                usual = self._usual_positions(link, pending[0].names)
+                if usual is not None:
+                    index_arrays.append(usual[0])
+                    whole_blocks += usual[1]
                     value_lists += pending[0].values
                     continue
             joints: dict[str, float] = {}
@@ -300,12 +302,19 @@ class SimEngine:
                         self.referee.request_pass(link.side, link.unum)
             if joints:
                 self._joints(link, joints, motor_index, motor_value)
-        if motor_index:
-            index_arrays.append(np.array(motor_index, dtype=np.intp))
-            value_lists += motor_value
-        if index_arrays:
-            self.world.motors.command_many(index_arrays[0] if len(index_arrays) == 1 else np.concatenate(index_arrays),
-                                           np.array(value_lists), self.world.data.qpos, self.world.time_s)
+        motors = self.world.motors
+        if whole_blocks == len(index_arrays) and not motor_index and len(value_lists) == motors.target.size > 0:
+            # Every robot commanded every joint once (one robot per link, so the blocks cover the bank).
+            bank = np.empty(len(value_lists))
+            bank[index_arrays[0] if len(index_arrays) == 1 else np.concatenate(index_arrays)] = value_lists
+            motors.command_all(bank, self.world.data.qpos, self.world.time_s)
+        else:
+            if motor_index:
+                index_arrays.append(np.array(motor_index, dtype=np.intp))
+                value_lists += motor_value
+            if index_arrays:
+                motors.command_many(index_arrays[0] if len(index_arrays) == 1 else np.concatenate(index_arrays),
+                                    np.array(value_lists), self.world.data.qpos, self.world.time_s)
         if speakers:
             listeners = [Listener(link.key, link.team or "", link.side or "",
                                   tuple(self.world.torso_position(link.key)))
@@ -354,24 +363,26 @@ class SimEngine:
         x, y, z = assignment.position_m
         self.world.place_robot(link.key, x, y, assignment.heading_deg, z)
 
-    def _usual_positions(self, link: AgentLink, names: tuple[str, ...]) -> np.ndarray | None:
-        """Motor-bank positions of a usual message's joints (cached per robot type, bank block and name order), or
-        None when `_joints` must take it: no robot yet, a name twice, or an effector the robot type lacks."""
+    def _usual_positions(self, link: AgentLink, names: tuple[str, ...]) -> tuple[np.ndarray, bool] | None:
+        """Motor-bank positions of a usual message's joints and whether they are all the robot's joints (cached
+        per robot type, bank block and name order), or None when `_joints` must take it: no robot yet, a
+        name twice, or an effector the robot type lacks."""
         robot = self.world.by_key.get(link.key)
         if robot is None:
             return None
         start = self.world.motors.blocks[link.key].start
         key = (robot.robot_type, start, names)
-        positions = self._usual_bank_positions.get(key, _MISSING)
-        if positions is _MISSING:
+        usual = self._usual_bank_positions.get(key, _MISSING)
+        if usual is _MISSING:
             effectors = _effector_index(robot.robot_type)
-            positions = None
+            usual = None
             if len(set(names)) == len(names) and all(name in effectors for name in names):
-                positions = np.array([start + effectors[name] for name in names], dtype=np.intp)
+                usual = (np.array([start + effectors[name] for name in names], dtype=np.intp),
+                         len(names) == len(effectors))
             if len(self._usual_bank_positions) >= _USUAL_POSITIONS_KEPT:   # odd agents vary the order
                 self._usual_bank_positions.clear()
-            self._usual_bank_positions[key] = positions
-        return positions
+            self._usual_bank_positions[key] = usual
+        return usual
 
     def _joints(self, link: AgentLink, values: dict[str, float], index: list[int], velocity: list[float]) -> None:
         """Collect one agent's joint commands as motor-bank positions (applied together afterwards)."""

@@ -217,3 +217,24 @@ def test_midphase_off_changes_no_state() -> None:
         assert touching > 10
         states.append(world.data.qpos.tobytes() + world.data.qvel.tobytes())
     assert states[0] == states[1]
+
+
+def test_commanding_every_joint_at_once_follows_the_same_rules() -> None:
+    # MotorBank.command_all (every joint of every robot, the usual cycle) against command_many on the same
+    # inputs: joints at or past a stop, frozen joints and speeds beyond the limit must come out alike.
+    world = standing(3)
+    motors, rng = world.motors, np.random.default_rng(4)
+    n = motors.target.size
+    qpos = world.data.qpos.copy()
+    qpos[motors.qadr] = rng.uniform(motors.min_rad - 0.1, motors.max_rad + 0.1)
+    qpos[motors.qadr[:4]] = motors.min_rad[:4]                    # exactly at a stop: not strictly inside
+    motors.frozen_until[rng.choice(n, 10, replace=False)] = world.time_s + 0.5
+    before = rng.normal(0.0, 1.0, n)
+    values = rng.normal(0.0, 8.0, n)                              # many beyond the 6.14 rad/s limit
+    order = rng.permutation(n)
+    motors.target[:] = before
+    motors.command_many(order, values[order], qpos, world.time_s)
+    expected = motors.target.copy()
+    motors.target[:] = before
+    motors.command_all(values, qpos, world.time_s)
+    assert np.array_equal(motors.target, expected) and not np.array_equal(expected, before)
