@@ -246,13 +246,16 @@ def write_best(motion: str, best: dict, command: str, params_path: Path = GAIT_P
     return write_gait_files(params_path, names=names)
 
 
-def measure(motion: str, params: GaitParams, duration_s: float = 20.0) -> dict[str, float]:
-    """Steady velocity of a plain run (for the motion file's measured constants)."""
-    library = MotionLibrary()
-    library.add(build_walk(motion, params))
+def measure(motion: str, params: GaitParams, duration_s: float = 20.0, robot_type: int = 0,
+            library: MotionLibrary | None = None) -> dict[str, float]:
+    """Steady velocity of a plain run (for the motion file's measured constants); ``library`` holds the
+    motion already (default: built from ``params`` for type 0)."""
+    if library is None:
+        library = MotionLibrary()
+        library.add(build_walk(motion, params))
     forward = DIRECTIONS[motion][0] > 0
     run = run_walk(library, motion, duration_s, position_m=(-13.5, 0.0) if forward else (0.0, 0.0),
-                   x_limit_m=14.5 if forward else None)
+                   x_limit_m=14.5 if forward else None, robot_type=robot_type)
     v_forward, v_left = run.steady_velocity_m_s()
     end = run.truths[run.walk_cycles - 1].torso_m[:2]
     stop_m = math.dist(end, run.truths[-1].torso_m[:2]) if not run.fell else 0.0
@@ -260,9 +263,46 @@ def measure(motion: str, params: GaitParams, duration_s: float = 20.0) -> dict[s
             "stop_m": stop_m}
 
 
+def measure_type(robot_type: int, names: Sequence[str] | None = None) -> Path:
+    """Regenerate the walks of ``robot_type`` (``motions/files/type<N>``), measure them and write their figures
+    into its override file (``motions/params/gait_type<N>.toml``, other keys kept), then regenerate them with
+    the figures as constants."""
+    import tomllib
+
+    from agent.motion import default_library
+    from motions.authoring.gait_params import _toml_value
+    from motions.authoring.gait_types import WALK_NAMES, type_params_path, write_type_gait_files
+
+    path = type_params_path(robot_type)
+    raw = tomllib.loads(path.read_text(encoding="utf-8")) if path.is_file() else {}
+    write_type_gait_files(robot_type)  # the files measured are those of the current overrides
+    library = default_library(robot_type)
+    date = datetime.date.today().isoformat()
+    for name in names or WALK_NAMES:
+        figures = measure(name, GaitParams(), robot_type=robot_type, library=library)
+        section = {k: v for k, v in raw.get(name, {}).items() if k not in ("measured_forward_m_s", "measured_left_m_s",
+                                                                        "measured_stop_m", "measured")}
+        section["measured"] = (f"python -m motion_studio.tune_gait --measure-type {robot_type} on {date}: steady "
+                               f"forward {figures['forward_m_s']:.3f} m/s, left {figures['left_m_s']:.3f} m/s over "
+                               f"{figures['time_s']:.0f} s, fell {figures['fell']}")
+        section.update(measured_forward_m_s=round(figures["forward_m_s"], 4),
+                       measured_left_m_s=round(figures["left_m_s"], 4), measured_stop_m=round(figures["stop_m"], 4))
+        raw[name] = section
+    lines = [f"# Walk overrides and measured figures of robot type {robot_type} (motions.authoring.gait_types).",
+             "# Units in the key names; a section's gait keys override the type-0 parameters of gait.toml.",
+             f"# Measured keys written by python -m motion_studio.tune_gait --measure-type {robot_type}."]
+    for name, section in raw.items():
+        lines += ["", f"[{name}]"] + [f"{key} = {_toml_value(value)}" for key, value in section.items()]
+    path.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    write_type_gait_files(robot_type)
+    return path
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="python -m motion_studio.tune_gait", description=__doc__.split("\n\n")[0])
-    parser.add_argument("motion", choices=sorted(SPACES))
+    parser.add_argument("motion", choices=sorted(SPACES), nargs="?")
+    parser.add_argument("--measure-type", type=int, default=None, metavar="N",
+                        help="measure robot type N's shipped walks into gait_type<N>.toml and regenerate them")
     parser.add_argument("--generations", type=int, default=30)
     parser.add_argument("--workers", type=int, default=1)
     parser.add_argument("--popsize", type=int, default=None)
@@ -276,6 +316,11 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--write", action="store_true", help="write the best into gait.toml and regenerate")
     parser.add_argument("--common", action="store_true", help="with --write: the posture keys also go to [common]")
     args = parser.parse_args(argv)
+    if args.measure_type is not None:
+        print(measure_type(args.measure_type, [args.motion] if args.motion else None))
+        return 0
+    if args.motion is None:
+        parser.error("a motion is needed unless --measure-type is given")
     base = load_gait_params()[args.motion]
     if args.base_json:
         base = _params(json.loads(args.base_json.read_text()))

@@ -127,7 +127,7 @@ def make_controller(library: MotionLibrary, dynamic: DynamicParams | None = None
 def run_walk(library: MotionLibrary, motion: str, duration_s: float, *, position_m: tuple[float, float] = (-13.5, 0.0),
              heading_deg: float = 0.0, lean: float = 0.0, pushes: Sequence[Push] = (), stop_s: float = 2.0,
              x_limit_m: float | None = 14.5, dynamic: DynamicParams | None = None, seed: int = 0,
-             ball_m: tuple[float, float] | None = BALL_AWAY_M) -> WalkRun:
+             ball_m: tuple[float, float] | None = BALL_AWAY_M, robot_type: int = 0) -> WalkRun:
     """Play ``motion`` for ``duration_s`` (or until a fall or the torso passes ``x_limit_m``), then request no
     motion for ``stop_s`` (the walk finalizes into its stop phases).
 
@@ -138,7 +138,7 @@ def run_walk(library: MotionLibrary, motion: str, duration_s: float, *, position
     controller = make_controller(library, dynamic)
     request = {"lean": lean} if lean else {}
     scenario = Scenario(PlayMotion(motion, repeat=True, **request), position_m=position_m, heading_deg=heading_deg,
-                        controller=controller, recover_falls=False, seed=seed, ball_m=ball_m)
+                        controller=controller, recover_falls=False, seed=seed, ball_m=ball_m, robot_type=robot_type)
     truths: list[Truth] = []
     fall_cycle = None
     pending = sorted(pushes, key=lambda p: p.time_s)

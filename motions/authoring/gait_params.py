@@ -29,7 +29,7 @@ GAIT_PARAMS_PATH = PARAMS_DIR / "gait.toml"
 #: Section shared by all motions.
 COMMON = "common"
 #: Keys of a section that are not gait parameters.
-META_KEYS = ("provenance", "measured_forward_m_s", "measured_left_m_s", "measured_stop_m")
+META_KEYS = ("provenance", "measured", "measured_forward_m_s", "measured_left_m_s", "measured_stop_m")
 
 
 def _gait_values(table: Mapping[str, object], where: str) -> dict[str, object]:
