@@ -64,13 +64,13 @@ class Dimension:
 
 
 #: The search space (the ball's spot is part of the kick: it sets where along the swing the foot meets it;
-#: at least 0.125 m ahead of the torso point, about 1.5 cm clear of the stance toes, so that the weight
-#: shift does not nudge it).
+#: at least 0.134 m ahead of the support sole's centre, about 1.2 cm clear of the stance toes, so that the
+#: weight shift does not nudge it).
 SPACE = (
     Dimension("shift_ms", 300, 700, 20), Dimension("com_inset_m", -0.01, 0.025), Dimension("com_forward_m", -0.02, 0.03),
-    Dimension("torso_pitch_deg", -4.0, 8.0), Dimension("torso_lift_m", 0.0, 0.025),
+    Dimension("torso_pitch_deg", -4.0, 8.0), Dimension("torso_height_m", 0.32, 0.36),
     Dimension("shift_torso_roll_deg", -6.0, 6.0), Dimension("lift_height_m", 0.02, 0.06),
-    Dimension("kick_x_offset_m", -0.04, 0.0), Dimension("windup_ms", 100, 300, 20),
+    Dimension("kick_foot_x_m", 0.06, 0.11), Dimension("windup_ms", 100, 300, 20),
     Dimension("windup_back_m", -0.12, -0.03), Dimension("windup_height_m", 0.03, 0.10),
     Dimension("windup_pitch_deg", -45.0, 0.0), Dimension("windup_yaw_deg", -12.0, 0.0),
     Dimension("windup_torso_pitch_deg", -5.0, 12.0), Dimension("windup_torso_yaw_deg", -20.0, 0.0),
@@ -80,7 +80,7 @@ SPACE = (
     Dimension("strike_height_m", 0.02, 0.08), Dimension("strike_pitch_deg", -15.0, 30.0),
     Dimension("follow_ms", 20, 200, 20), Dimension("retract_ms", 200, 500, 20), Dimension("land_ms", 200, 500, 20),
     Dimension("recover_ms", 300, 700, 20), Dimension("arm_swing_deg", 0.0, 40.0),
-    Dimension("ball_forward_m", 0.125, 0.22), Dimension("ball_left_m", -0.10, -0.02),
+    Dimension("ball_ahead_m", 0.134, 0.23), Dimension("ball_side_m", 0.03, 0.13),
 )
 
 

@@ -7,9 +7,9 @@ The kick, phase by phase (one keyframe each, all solved with ``kinematics.ik.Who
    straight after a walk or a ``stand`` starts at once).
 2. ``shift``: both feet down, the torso moves sideways until the whole-body CoM lies over the support
    (left) sole, ``com_inset_m`` toward the inside and ``com_forward_m`` ahead of its centre.
-3. ``lift``: the kicking foot leaves the ground and moves ``kick_x_offset_m`` inward (under the hip, closer
-   to the ball's line); the CoM stays over the support sole (every keyframe from here re-solves the torso
-   position for it); the torso rises ``torso_lift_m`` so that the kicking leg reaches farther.
+3. ``lift``: the kicking foot leaves the ground and moves to ``kick_foot_x_m`` beside the support sole
+   (under the hip, closer to the ball's line); the CoM stays over the support sole (every keyframe from
+   here re-solves the torso position for it); the torso is at ``torso_height_m``.
 4. ``windup``: the foot draws back and up, toes down (``windup_pitch_deg``), the torso may lean forward.
 5. ``swing`` (optional, ``swing_ms`` > 0) / ``strike``: the foot swings forward, through a via point under
    the hip if there is one, then through the ball to ``strike_forward_m``; the phases are shorter than the
@@ -18,9 +18,10 @@ The kick, phase by phase (one keyframe each, all solved with ``kinematics.ik.Who
 7. ``retract`` / ``land``: the foot comes back under the hip and down beside the support foot.
 8. ``recover``: the CoM returns to the middle: the walk stance again, ``in_walk_position`` set.
 
-The ball's place relative to the robot (ego frame: forward, left of the torso's ground point at the walk
-stance) is written as the constants ``ball_forward_m`` / ``ball_left_m``, so the kick skill knows where to
-stand. Parameters live in ``motions/params/kick.toml`` (one section per motion, each over ``[common]``).
+The kick's geometry is given relative to the support sole (so it keeps working when the walk stance
+changes): the ball lies ``ball_ahead_m`` ahead of and ``ball_side_m`` beside the support sole's centre. Its
+place relative to the robot (ego frame: forward, left of the torso's ground point at the walk stance) is
+written as the constants ``ball_forward_m`` / ``ball_left_m``, so the kick skill knows where to stand. Parameters live in ``motions/params/kick.toml`` (one section per motion, each over ``[common]``).
 
 Run ``python -m motions.authoring.kick`` to write kick.xml, kick_strong.xml, kick_left.xml and
 kick_strong_left.xml into ``motions/files/``.
@@ -79,17 +80,18 @@ class KickParams:
     """Torso pitch from the shift to the landing [deg] (+ = forward). Near 0: with a pitched torso the hip
     roll axis is tilted, so shifting sideways needs hip yaw toward the inside, which the Nao's hip yaw-pitch
     joints cannot do (range -90..1 deg); IK then fails beyond about 1.5 cm of shift at the walk's 8 deg."""
-    torso_lift_m: float = 0.0
-    """Torso raised above the stance height from the shift to the landing [m]: the support leg
-    straightens a little so the kicking leg can swing lower and farther."""
+    torso_height_m: float = 0.342
+    """Torso centre height from the shift to the landing [m] (the walk stance's own height is in
+    gait.toml; a higher torso lets the kicking leg swing lower and farther)."""
     shift_torso_roll_deg: float = 0.0
     """Torso roll toward the kicking side while on one foot [deg] (+ = the top leans right)."""
     lift_ms: int = 200
     """Lifting the kicking foot [ms]."""
     lift_height_m: float = 0.03
     """Sole height after the lift (and during the retract) [m]."""
-    kick_x_offset_m: float = -0.01
-    """Kicking foot's sideways offset from its stance place while in the air [m] (- = inward)."""
+    kick_foot_x_m: float = 0.07
+    """Kicking sole centre beside the support sole centre while in the air [m] (the stance has them a foot
+    spacing apart; less = closer to the support foot, under the hip)."""
     windup_ms: int = 200
     """Draw-back [ms]."""
     windup_back_m: float = -0.07
@@ -141,10 +143,10 @@ class KickParams:
     """CoM back to the middle: the walk stance [ms]."""
     arm_swing_deg: float = 0.0
     """Shoulder pitch swing during the strike [deg]: the support-side arm forward, the other back."""
-    ball_forward_m: float = 0.16
-    """Ball centre ahead of the torso's ground point when the kick starts (at the stance) [m]."""
-    ball_left_m: float = -0.055
-    """Ball centre left of the torso's ground point [m] (the right foot kicks: negative)."""
+    ball_ahead_m: float = 0.134
+    """Ball centre ahead of the support sole's centre when the kick starts [m]."""
+    ball_side_m: float = 0.083
+    """Ball centre beside (toward the kicking foot) the support sole's centre when the kick starts [m]."""
 
 
 @dataclass(frozen=True)
@@ -343,7 +345,7 @@ def kick_poses(params: KickParams, stance: GaitParams) -> list[tuple[str, int, P
     base_pitch = params.torso_pitch_deg
     lean = base_pitch + params.windup_torso_pitch_deg
     roll = params.shift_torso_roll_deg
-    air_x = half + params.kick_x_offset_m
+    air_x = left.x_m + params.kick_foot_x_m
     lifted = FootPose(air_x, 0.0, params.lift_height_m)
     windup = FootPose(air_x, params.windup_back_m, params.windup_height_m,
                       yaw_rad=math.radians(params.windup_torso_yaw_deg + params.windup_yaw_deg),
@@ -353,7 +355,7 @@ def kick_poses(params: KickParams, stance: GaitParams) -> list[tuple[str, int, P
     strike = FootPose(air_x, params.strike_forward_m, params.strike_height_m,
                       yaw_rad=math.radians(params.strike_yaw_deg), pitch_rad=math.radians(params.strike_pitch_deg))
     swing = params.arm_swing_deg
-    lift = params.torso_lift_m
+    lift = params.torso_height_m - stance.torso_height_m
 
     def pose(foot: FootPose, pitch: float, arms: tuple[float, float] = (0.0, 0.0), yaw: float = 0.0) -> Pose:
         return Pose(foot, left, com, pitch, roll, arms, lift, yaw)
@@ -398,9 +400,20 @@ def build_kick(name: str, params: KickParams, stance: GaitParams, solver: Keyfra
         phases.append(_phase(phase_name, angles, duration_ms, next=names[index + 1],
                              set_flag_false=STANCE_FLAG if index == 1 else None))
     phases.append(_phase("recover", stand, params.recover_ms, is_final=True, set_flag_true=STANCE_FLAG))
-    constants = {"ball_forward_m": params.ball_forward_m, "ball_left_m": params.ball_left_m}
+    constants = ball_constants(params, stance)
     return Motion(name, phases, source_format=XML, first_phase="stance", constants=constants,
                   header_comments=header_comments)
+
+
+def ball_constants(params: KickParams, stance: GaitParams) -> dict[str, float]:
+    """The ball's spot in the ego frame of the robot in the walk stance: ``ball_forward_m``, ``ball_left_m``.
+
+    The stance puts the soles ``torso_forward_m`` behind the torso's ground point and half the foot spacing
+    to each side; the support (left) sole is the origin of the kick's geometry.
+    """
+    half = stance.foot_spacing_m / 2.0
+    return {"ball_forward_m": round(params.ball_ahead_m - stance.torso_forward_m, 4),
+            "ball_left_m": round(half - params.ball_side_m, 4)}
 
 
 def mirrored_kick(motion: Motion, name: str, header_comments: tuple[str, ...] = ()) -> Motion:
@@ -459,4 +472,4 @@ if __name__ == "__main__":
 
 
 __all__ = ["KICKS", "KickParams", "Pose", "build_all", "build_kick", "kick_params", "kick_poses",
-           "mirrored_kick", "parse_kick_params", "PoseSolver", "stance_params", "write_all"]
+           "ball_constants", "mirrored_kick", "parse_kick_params", "PoseSolver", "stance_params", "write_all"]
