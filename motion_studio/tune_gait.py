@@ -68,8 +68,10 @@ SHAPE = (Dimension("step_height_m", 0.01, 0.05), Dimension("sway_m", 0.0, 0.04),
          Dimension("ramp_steps", 1, 4, integer=True))
 POSTURE = (Dimension("torso_height_m", 0.30, 0.365), Dimension("torso_pitch_deg", 0.0, 25.0),
            Dimension("torso_forward_m", -0.03, 0.04), Dimension("foot_spacing_m", 0.09, 0.14))
+#: The posture is the shared stance's ([common]; every walk starts from and stops in ``stand``), so it is
+#: searched only with ``--posture`` (and then moved to [common] with ``--write --common``).
 SPACES: dict[str, tuple[Dimension, ...]] = {
-    "walk_forward": (Dimension("step_length_m", 0.04, 0.13),) + SHAPE + POSTURE + (Dimension("arm_swing_deg", 0, 30),),
+    "walk_forward": (Dimension("step_length_m", 0.04, 0.13),) + SHAPE + (Dimension("arm_swing_deg", 0, 30),),
     "walk_backward": (Dimension("step_length_m", -0.09, -0.02),) + SHAPE + (Dimension("torso_pitch_deg", 0.0, 25.0),),
     "walk_left": (Dimension("side_step_m", -0.08, -0.01), Dimension("step_length_m", -0.01, 0.01)) + SHAPE,
     "walk_right": (Dimension("side_step_m", 0.01, 0.08), Dimension("step_length_m", -0.01, 0.01)) + SHAPE,
@@ -125,13 +127,58 @@ def trial_score(run: WalkRun, direction: tuple[float, float]) -> dict[str, float
             "fell_stopping": float(run.fell_stopping), "heading_deg": run.heading_change_deg}
 
 
-def evaluate(motion: str, params: GaitParams, trials: Sequence[Trial]) -> dict[str, object]:
+@dataclass(frozen=True)
+class Robust:
+    """Transition trials added to a candidate's loss (``motion_studio.walk_trials``): ``count`` scripts drawn
+    from ``seed`` (the same for every candidate of a generation), a fraction ``noisy`` of them played with
+    Gaussian noise of ``noise_deg`` on the walk's leg targets; each fall costs ``fall_cost``."""
+
+    seed: int = 0
+    count: int = 8
+    noisy: float = 0.5
+    noise_deg: float = 0.4
+    fall_cost: float = 1.5
+
+
+def candidate_library(motion: str, params: GaitParams) -> MotionLibrary:
+    """The shipped motions (stand, turns) with the candidate walk in place of ``motion``, its stance the
+    shipped ``stand``'s (as ``motions.authoring.gait.write_gait_files`` writes it).
+
+    Raises:
+        IKError: a keyframe of the candidate out of reach.
+    """
+    from agent.motion import default_library
+
+    library = default_library(0)
+    library.add(build_walk(motion, params, stance=load_gait_params()["stand"]))
+    return library
+
+
+def robust_figures(motion: str, library: MotionLibrary, robust: Robust) -> dict[str, float]:
+    """Falls of the candidate in ``robust.count`` transition scripts (some with keyframe noise)."""
+    import random
+
+    from motion_studio.walk_trials import perturbed, run_script, transition_script
+
+    rng = random.Random(robust.seed)
+    clean = library.get(motion)
+    falls = noisy_falls = 0
+    for index in range(robust.count):
+        script = transition_script(rng, library, motion)
+        noisy = index < round(robust.noisy * robust.count)
+        library.add(perturbed(clean, rng, robust.noise_deg) if noisy else clean)
+        fell = run_script(library, script, seed=robust.seed * 100 + index).fell
+        falls += fell
+        noisy_falls += fell and noisy
+    library.add(clean)
+    return {"falls": falls, "noisy_falls": noisy_falls, "count": robust.count}
+
+
+def evaluate(motion: str, params: GaitParams, trials: Sequence[Trial], robust: Robust | None = None) -> dict[str, object]:
     """Loss (lower is better) and per-trial figures of one candidate; an IK failure is a large loss. Lean
-    trials play with the shipped ``[walk_lean]`` curve."""
+    trials play with the shipped ``[walk_lean]`` curve; ``robust`` adds transition trials."""
     try:
-        library = MotionLibrary()
-        library.add(build_walk(motion, params))
-        library.add(build_stance("stand", params))
+        library = candidate_library(motion, params)
     except IKError as error:
         return {"loss": 10.0, "error": str(error)[:200], "trials": []}
     direction = DIRECTIONS[motion]
@@ -143,12 +190,18 @@ def evaluate(motion: str, params: GaitParams, trials: Sequence[Trial]) -> dict[s
                        position_m=lean_start if direction[0] > 0 else (0.0, 0.0))
         results.append(trial_score(run, direction))
     loss = -float(np.mean([r["score"] for r in results]))
-    return {"loss": loss, "trials": [{k: round(v, 4) for k, v in r.items()} for r in results]}
+    out: dict[str, object] = {"trials": [{k: round(v, 4) for k, v in r.items()} for r in results]}
+    if robust is not None:
+        figures = robust_figures(motion, library, robust)
+        loss += robust.fall_cost * figures["falls"] / max(1, figures["count"])
+        out["robust"] = figures
+    out["loss"] = loss
+    return out
 
 
-def _evaluate_packed(packed: tuple[str, dict, tuple[Trial, ...]]) -> dict[str, object]:
-    motion, values, trials = packed
-    return evaluate(motion, _params(values), trials)
+def _evaluate_packed(packed: tuple) -> dict[str, object]:
+    motion, values, trials, robust = packed
+    return evaluate(motion, _params(values), trials, robust)
 
 
 def _params(values: dict) -> GaitParams:
@@ -167,8 +220,11 @@ def _as_dict(params: GaitParams) -> dict:
 
 def tune(motion: str, base: GaitParams, dimensions: Sequence[Dimension], trials: Sequence[Trial], generations: int,
          checkpoint: Path, workers: int = 1, sigma0: float = 0.15, popsize: int | None = None, seed: int = 0,
-         progress: Callable[[str], None] = print) -> dict:
-    """Run (or resume) CMA-ES from ``base``; returns the checkpoint data (``best`` = lowest loss)."""
+         progress: Callable[[str], None] = print, robust: Robust | None = None) -> dict:
+    """Run (or resume) CMA-ES from ``base``; returns the checkpoint data (``best`` = lowest loss). With
+    ``robust``, each generation draws its own transition scripts (seed = generation), shared by its
+    candidates; ``best`` then compares losses over different scripts, so :func:`validate` re-ranks the
+    leading candidates on one larger set."""
     if checkpoint.is_file():
         data = json.loads(checkpoint.read_text())
         if data.get("motion") != motion or [d.name for d in dimensions] != data.get("dimensions"):
@@ -180,7 +236,7 @@ def tune(motion: str, base: GaitParams, dimensions: Sequence[Dimension], trials:
         strategy = CMAES.create(x0, sigma0, popsize, seed)
         data = {"motion": motion, "dimensions": [d.name for d in dimensions], "base": _as_dict(base),
                 "evaluations": [], "best": None}
-        base_result = evaluate(motion, base, trials)
+        base_result = evaluate(motion, base, trials, robust)
         data["best"] = {"loss": base_result["loss"], "params": _as_dict(base), "result": base_result}
         progress(f"base loss {base_result['loss']:.4f} {base_result['trials']}")
     checkpoint.parent.mkdir(parents=True, exist_ok=True)
@@ -190,7 +246,8 @@ def tune(motion: str, base: GaitParams, dimensions: Sequence[Dimension], trials:
             started = time.monotonic()
             candidates = strategy.ask()
             params = [replace(base, **{d.name: d.from_unit(u) for d, u in zip(dimensions, x)}) for x in candidates]
-            packed = [(motion, _as_dict(p), tuple(trials)) for p in params]
+            generation_robust = replace(robust, seed=strategy.generation + 1) if robust else None
+            packed = [(motion, _as_dict(p), tuple(trials), generation_robust) for p in params]
             results = list(pool.map(_evaluate_packed, packed) if pool else map(_evaluate_packed, packed))
             strategy.tell([float(r["loss"]) for r in results])
             for p, r in zip(params, results):
@@ -206,11 +263,34 @@ def tune(motion: str, base: GaitParams, dimensions: Sequence[Dimension], trials:
             shown = {d.name: best["params"][d.name] for d in dimensions}
             progress(f"gen {strategy.generation}/{generations} {time.monotonic() - started:.0f}s  "
                      f"loss min {losses[0]:.4f} median {losses[len(losses) // 2]:.4f}  sigma {strategy.sigma:.3f}  "
-                     f"best {best['loss']:.4f} {shown} {best['result']['trials']}")
+                     f"best {best['loss']:.4f} {shown} {best['result']['trials']} {best['result'].get('robust', '')}")
     finally:
         if pool:
             pool.shutdown()
     return data
+
+
+def validate(data: dict, trials: Sequence[Trial], robust: Robust, top: int = 4,
+             progress: Callable[[str], None] = print) -> dict:
+    """Re-rank the ``top`` lowest-loss distinct candidates of a checkpoint (and its base) on one set of
+    ``robust.count`` transition scripts; returns the winner as a ``best`` entry (``validated`` = figures)."""
+    motion = data["motion"]
+    seen, entries = set(), []
+    pool = [{"params": data["base"], "loss": float("inf")}] + sorted(data["evaluations"],
+                                                                    key=lambda e: e["result"]["loss"])
+    for entry in pool:
+        key = json.dumps(entry["params"], sort_keys=True)
+        if key not in seen:
+            seen.add(key)
+            entries.append(entry)
+        if len(entries) > top:
+            break
+    ranked = []
+    for entry in entries:
+        result = evaluate(motion, _params(entry["params"]), trials, robust)
+        progress(f"validate loss {result['loss']:.4f} {result['trials']} {result.get('robust')}")
+        ranked.append({"loss": result["loss"], "params": entry["params"], "result": result})
+    return min(ranked, key=lambda e: e["loss"])
 
 
 def write_best(motion: str, best: dict, command: str, params_path: Path = GAIT_PARAMS_PATH,
@@ -251,8 +331,7 @@ def measure(motion: str, params: GaitParams, duration_s: float = 20.0, robot_typ
     """Steady velocity of a plain run (for the motion file's measured constants); ``library`` holds the
     motion already (default: built from ``params`` for type 0)."""
     if library is None:
-        library = MotionLibrary()
-        library.add(build_walk(motion, params))
+        library = candidate_library(motion, params)
     forward = DIRECTIONS[motion][0] > 0
     run = run_walk(library, motion, duration_s, position_m=(-13.5, 0.0) if forward else (0.0, 0.0),
                    x_limit_m=14.5 if forward else None, robot_type=robot_type)
@@ -312,6 +391,12 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--checkpoint", type=Path, default=None)
     parser.add_argument("--quick", action="store_true", help="one short trial per candidate (smoke test)")
     parser.add_argument("--lean", action="store_true", help="add full-lean trials (the walk must stay steerable)")
+    parser.add_argument("--robust", type=int, default=0, metavar="N",
+                        help="add N random transition trials per candidate (motion_studio.walk_trials)")
+    parser.add_argument("--noise-deg", type=float, default=0.4, help="keyframe noise of half the robust trials")
+    parser.add_argument("--posture", action="store_true", help="also search the posture (the shared stance)")
+    parser.add_argument("--validate", type=int, default=0, metavar="N",
+                        help="before --write: re-rank the leading candidates on N transition trials")
     parser.add_argument("--base-json", type=Path, default=None, help="start from these parameters (JSON object)")
     parser.add_argument("--write", action="store_true", help="write the best into gait.toml and regenerate")
     parser.add_argument("--common", action="store_true", help="with --write: the posture keys also go to [common]")
@@ -326,13 +411,22 @@ def main(argv: list[str] | None = None) -> int:
         base = _params(json.loads(args.base_json.read_text()))
     if args.step_cycles:
         base = replace(base, step_cycles=args.step_cycles)
-    checkpoint = args.checkpoint or CHECKPOINT_DIR / f"{args.motion}_{base.step_cycles}.json"
-    data = tune(args.motion, base, SPACES[args.motion], default_trials(args.motion, args.quick, args.lean), args.generations,
-                checkpoint, args.workers, args.sigma, args.popsize, args.seed)
+    checkpoint = args.checkpoint or CHECKPOINT_DIR / (f"{args.motion}_{base.step_cycles}"
+                                                       + ("_robust" if args.robust else "") + ".json")
+    robust = Robust(count=args.robust, noise_deg=args.noise_deg) if args.robust else None
+    space = SPACES[args.motion] + (POSTURE if args.posture else ())
+    trials = default_trials(args.motion, args.quick, args.lean)
+    data = tune(args.motion, base, space, trials, args.generations, checkpoint, args.workers, args.sigma,
+                args.popsize, args.seed, robust=robust)
     print(f"best loss {data['best']['loss']:.4f}: {data['best']['params']}")
+    if args.validate:
+        data["best"] = validate(data, trials, Robust(seed=10_000, count=args.validate, noise_deg=args.noise_deg))
+        print(f"validated best loss {data['best']['loss']:.4f}: {data['best']['params']}")
     if args.write:
         command = (f"python -m motion_studio.tune_gait {args.motion} --step-cycles {base.step_cycles} "
-                   f"--generations {args.generations} --seed {args.seed}" + (" --lean" if args.lean else ""))
+                   f"--generations {args.generations} --seed {args.seed}" + (" --lean" if args.lean else "")
+                   + (f" --robust {args.robust} --noise-deg {args.noise_deg}" if args.robust else "")
+                   + (f" --validate {args.validate}" if args.validate else "") + (" --posture" if args.posture else ""))
         keys = [d.name for d in POSTURE] if args.common else []
         for path in write_best(args.motion, data["best"], command, common_keys=keys):
             print(path)

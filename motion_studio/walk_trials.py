@@ -20,6 +20,7 @@ from agent.motion import MotionController, MotionLibrary, MotionRequest
 from agent.motion.dynamic import DynamicParams
 from agent.skills.base import Skill
 from agent.world_model import WorldModel
+from motions.model import Motion
 from motion_studio.scenarios import Scenario, Truth
 from motion_studio.walk_rollout import BALL_AWAY_M, CYCLE_S, Push, make_controller
 
@@ -250,6 +251,25 @@ def transition_script(rng: random.Random, library: MotionLibrary, motion: str = 
         segments.append(Segment(motion, rng.uniform(0.6, 1.5)))
     push = Push(max(0.0, push_time_s), *_polar(rng.uniform(0.0, max_push_m_s), rng.uniform(-math.pi, math.pi)))
     return Script(tuple(segments), (push,), label=f"{motion}:{start}")
+
+
+def perturbed(motion: Motion, rng: random.Random, sigma_deg: float,
+              prefixes: tuple[str, ...] = ("start_", "cycle_", "stop_")) -> Motion:
+    """A copy of an XML walk whose leg targets in the phases named with ``prefixes`` carry Gaussian noise of
+    ``sigma_deg`` (robustness to small changes of the authored angles, which felled earlier gaits)."""
+    from dataclasses import replace as dc_replace
+
+    from motions.model import JointTarget
+
+    phases = []
+    for phase in motion.keyframes:
+        if phase.name.startswith(prefixes):
+            targets = {wire: (JointTarget(t.angle_rad + math.radians(rng.gauss(0.0, sigma_deg)), t.computed)
+                              if t.angle_rad is not None and wire[1:3] == "lj" else t)
+                       for wire, t in phase.targets.items()}
+            phase = dc_replace(phase, targets=targets)
+        phases.append(phase)
+    return dc_replace(motion, keyframes=phases)
 
 
 def _polar(radius: float, angle: float) -> tuple[float, float]:
