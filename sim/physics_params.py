@@ -95,10 +95,6 @@ class PhysicsParams:
     """Drag per robot body [N·s/m] (REFERENCE §2.1)."""
     body_angular_drag_nm_s: float = 0.01
     """Angular drag per robot body [N·m·s/rad]."""
-    joint_limit_solref: tuple[float, float] = (0.02, 1.0)
-    """solref of the joint stops (StopERP 0.8 / StopCFM 1e-8 in SimSpark: hard)."""
-    joint_limit_solimp: tuple[float, float, float, float, float] = (0.99, 0.999, 0.001, 0.5, 2.0)
-    """solimp of the joint stops."""
     solver_iterations: int = 50
     """Main solver iterations (Newton)."""
 
