@@ -429,18 +429,21 @@ class World:
                 self._recover_from_divergence(cycle_start)
             contacts = self._contact_table()
             self._ball_rebound(ball_velocity, contacts)
-        self._guard_blow_up(cycle_start)
+        self._guard_blow_up(cycle_start, contacts)
         self.time_s += self.params.cycle_s
         self._contacts(contacts)  # from the step's contacts, with the poses they were found at
         mujoco.mj_kinematics(m, d)
         self._poses_stale = False
 
-    def _guard_blow_up(self, cycle_start: tuple[np.ndarray, ...]) -> None:
+    def _guard_blow_up(self, cycle_start: tuple[np.ndarray, ...],
+                       contacts: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None = None) -> None:
         """Catch a robot whose physics is blowing up before MuJoCo's own check does (it only trips at
         accelerations of 1e10, cycles later, when the robot is already kilometres away): a hinge far past
         its stop or spinning far beyond any motor speed. That robot goes back to this cycle's start, at
         rest, its hinges inside their stops; the others keep their step. Seen on our simulator with a leg driven into the ground while
-        kneeling (the contact and the joint stops are soft against a stiff servo)."""
+        kneeling (the contact and the joint stops are soft against a stiff servo). A ball that robot touched
+        in the step goes back to the cycle's start too (position and velocity): it took its push from the
+        bad step (measured: a kicking ankle blew up against the ball, which kept 4.2 m/s and 0.5 m of height)."""
         motors = self.motors
         if motors.qadr.size == 0:
             return
@@ -467,9 +470,20 @@ class World:
             d.qpos[motors.qadr[mine]] = np.clip(d.qpos[motors.qadr[mine]], motors.min_rad[mine], motors.max_rad[mine])
             d.qvel[first:end] = 0.0
             d.qacc_warmstart[first:end] = 0.0
+            if contacts is not None and self._touches_ball(robot, contacts):
+                b0, b1 = self.ball_qadr, self.ball_qadr + 7
+                v0, v1 = self.ball_dof, self.ball_dof + 6
+                d.qpos[b0:b1], d.qvel[v0:v1] = cycle_start[0][b0:b1], cycle_start[1][v0:v1]
+                d.qacc_warmstart[v0:v1] = 0.0
             logger.warning("robot %s: physics blowing up (%s); back to the cycle's start at rest", robot.key,
                            detail)
         mujoco.mj_forward(self.model, d)
+
+    def _touches_ball(self, robot: Robot, contacts: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]) -> bool:
+        """Whether ``robot`` had a contact with the ball in the last step (from `_contact_table`)."""
+        _, owner, _, robot_rows = contacts
+        row = self.order.index(robot.key)
+        return bool(np.any(owner[robot_rows] == row))
 
     def _recover_from_divergence(self, cycle_start: tuple[np.ndarray, ...]) -> None:
         """MuJoCo found a non-finite or huge position, velocity or acceleration and reset the whole world to

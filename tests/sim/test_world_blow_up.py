@@ -47,3 +47,22 @@ def test_mujoco_reset_on_a_bad_acceleration_is_undone():
     assert np.all(np.isfinite(world.data.qpos))
     # Not at the model's origin pose: every robot is where it was.
     assert np.allclose(world.data.qpos[q1][:3], before[:3], atol=1e-2)
+
+
+def test_a_ball_touched_by_a_robot_blowing_up_goes_back_with_it():
+    world = standing(1)
+    cycle(world, 5)
+    foot = world.data.xpos[world.by_key[0].foot_bodies["lf"]]
+    # The ball against the top front edge of the left foot (foot half length 8 cm, top 1.8 cm above the
+    # ground; the ball's surface is 3.4 cm ahead of its centre at that height), 2 mm into it.
+    world.set_ball((foot[0] + 0.08 + 0.034 - 0.002, foot[1], 0.042))
+    world.end_cycle()
+    start_q = world.data.qpos[world.ball_qadr:world.ball_qadr + 7].copy()
+    start_v = world.data.qvel[world.ball_dof:world.ball_dof + 6].copy()
+    motors = world.motors
+    ankle = int(np.flatnonzero(motors.dof == world.by_key[0].root_dof + 6 + 10)[0])  # llj5: swings the foot
+    world.data.qvel[motors.dof[ankle]] = -400.0        # the foot still touches the ball when the step starts
+    cycle(world)
+    assert world.divergences == 1 and world.ball_touchers() == [("left", 1)]
+    assert np.array_equal(world.data.qpos[world.ball_qadr:world.ball_qadr + 7], start_q)
+    assert np.array_equal(world.data.qvel[world.ball_dof:world.ball_dof + 6], start_v)
