@@ -9,6 +9,9 @@ other spacing, a duplicate, a bad number, a malformed message) is parsed again b
 :mod:`agent.protocol.sense_tree`, which gives the same values, skips and counts unknown expressions, and
 raises a ProtocolError at the offending byte. The tests check both paths agree on every real message.
 
+Before the fast path, a message whose shape (predicates, order and names) was parsed before is read by that
+shape's single pattern (:mod:`agent.protocol.sense_shape`): the same result, without walking the predicates.
+
 ``format_sense`` lives in :mod:`agent.protocol.sense_format` and is re-exported here.
 """
 
@@ -36,6 +39,7 @@ from agent.protocol.perceptors import (
     VisiblePlayer,
 )
 from agent.protocol.sense_format import format_sense
+from agent.protocol.sense_shape import ShapeCache
 from agent.protocol.sense_tree import parse_sense_general
 from agent.protocol.sexpr import ascii_text
 
@@ -101,7 +105,12 @@ def parse_sense(data: bytes | str, *, fast_path: bool = True) -> Sense:
         else:
             text, raw = data, data.encode("latin-1", "replace")
         try:
-            sense = _parse_fast(text, raw)
+            # A message of a shape parsed before is read by that shape's one pattern (sense_shape).
+            sense = _SHAPES.parse(text, raw)
+            if sense is None:
+                sense = _parse_fast(text, raw)
+                if sense is not None:
+                    _SHAPES.learn(sense)
         except ValueError:  # a number float() refused
             sense = None
         if sense is not None:
@@ -247,3 +256,7 @@ def _fast_see(text: str, raw: bytes, pos: int) -> tuple[See, int] | None:
     if i == start or not text.startswith(")", i):
         return None
     return See(tuple(objects), tuple(players), tuple(lines), my_pos, "".join(runs)), i + 1
+
+
+#: Shapes of the messages parsed so far (see agent.protocol.sense_shape).
+_SHAPES = ShapeCache(_fast_see)

@@ -1,0 +1,181 @@
+"""Sense messages of a shape seen before, read by one compiled pattern per shape.
+
+Why: a server sends each robot the same predicates in the same order every cycle (its joints and foot
+sensors in the order of its body tree, vision every third cycle); only the numbers, which feet touch the
+ground, the vision content and the hears change. So once the fast path of :mod:`agent.protocol.sense` has
+parsed a message, its shape (the predicate order with every joint, foot and body name) becomes one regular
+expression whose groups are the message's numbers: a later message of that shape is matched in one call and
+its values are taken from the groups, almost all in C, instead of walking the predicates one by one.
+
+The pattern spells each predicate exactly as the fast path's patterns do (numbers loosely; ``float`` checks
+them and raises ValueError for the caller's general path), and the See predicate is read by the fast path's
+own See reader, so both accept the same messages and give the same :class:`Sense`; tests check it on real
+messages. A message that matches no known shape goes the usual way.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Callable
+from operator import itemgetter
+from typing import Any
+
+from agent.protocol.perceptors import (Accelerometer, ForceResistance, GameState, Gyro, Hear, See, Sense,
+                                       TimePerceptor)
+
+#: Shapes kept at most (a server sends a handful: vision or not, which feet touch, hears); past it all go.
+MAX_SHAPES = 64
+
+_NUM = r"([-.0-9]++)"
+_ATOM = r"([!-'*-~]++)"
+_GS = rf"\(GS (?:\(unum (-?\d+)\) \(team {_ATOM}\) )?\(sl (-?\d+)\) \(sr (-?\d+)\) \(t {_NUM}\) \(pm {_ATOM}\)\)"
+_HEAR = rf"\(hear {_ATOM} {_NUM} (self|[-.0-9]++) {_ATOM}\)"
+# The See predicate runs to the first ')' followed by the next predicate or the end: inside it a ')' is
+# always followed by ')' or ' ' in the server's spelling. Its content is then read and checked by the See
+# reader of the fast path, which must end exactly where this group ends.
+_SEE = r"(\(See.*?\))(?=\(|\Z)"
+_FRP_KEY = "(FRP"
+
+SeeReader = Callable[[str, bytes, int], "tuple[See, int] | None"]
+
+
+class _Shape:
+    """One message shape: its pattern and where each perceptor's values are among the pattern's groups."""
+
+    def __init__(self, sense: Sense) -> None:
+        pieces: list[str] = []
+        group = 0
+        joint_names: list[str] = []
+        joint_groups: list[int] = []
+        self.frp: list[tuple[str, int]] = []
+        self.hears: list[int] = []
+        self.time = self.game_state = self.see = -1
+        self.gyro: tuple[str, int] | None = None
+        self.acc: tuple[str, int] | None = None
+        joints, feet = iter(sense.joints), iter(sense.frp)
+        for kind in sense.order:
+            if kind == "HJ":
+                name = next(joints)
+                pieces.append(rf"\(HJ \(n {re.escape(name)}\) \(ax {_NUM}\)\)")
+                joint_names.append(name)
+                joint_groups.append(group)
+                group += 1
+            elif kind == "FRP":
+                name = next(feet)
+                pieces.append(rf"\(FRP \(n {re.escape(name)}\) \(c {_NUM} {_NUM} {_NUM}\) \(f {_NUM} {_NUM} {_NUM}\)\)")
+                self.frp.append((name, group))
+                group += 6
+            elif kind in ("GYR", "ACC"):
+                reading = sense.gyro if kind == "GYR" else sense.acc
+                assert reading is not None
+                key = "rt" if kind == "GYR" else "a"
+                pieces.append(rf"\({kind} \(n {re.escape(reading.name)}\) \({key} {_NUM} {_NUM} {_NUM}\)\)")
+                if kind == "GYR":
+                    self.gyro = (reading.name, group)
+                else:
+                    self.acc = (reading.name, group)
+                group += 3
+            elif kind == "time":
+                pieces.append(rf"\(time \(now {_NUM}\)\)")
+                self.time = group
+                group += 1
+            elif kind == "GS":
+                pieces.append(_GS)
+                self.game_state = group
+                group += 6
+            elif kind == "hear":
+                pieces.append(_HEAR)
+                self.hears.append(group)
+                group += 4
+            elif kind == "See":
+                pieces.append(_SEE)
+                self.see = group
+                group += 1
+            else:
+                raise ValueError(f"no shape for {kind!r}")
+        self.pattern = re.compile("".join(pieces))
+        self.order = sense.order
+        self.frp_count = len(self.frp)
+        self.joint_names = tuple(joint_names)
+        # itemgetter of one index gives the item itself, not a 1-tuple.
+        single = len(joint_groups) == 1
+        getter = itemgetter(*joint_groups) if joint_groups else (lambda groups: ())
+        self.joint_values: Callable[[tuple[Any, ...]], Any] = (
+            (lambda groups: (groups[joint_groups[0]],)) if single else getter)
+
+    def read(self, text: str, raw: bytes, see_reader: SeeReader) -> Sense | None:
+        """The Sense of ``text`` if it has this shape, else None.
+
+        Raises:
+            ValueError: a number ``float`` refuses (the caller's general path then locates it).
+        """
+        m = self.pattern.fullmatch(text)
+        if m is None:
+            return None
+        g = m.groups()
+        see = None
+        if self.see >= 0:
+            found = see_reader(text, raw, m.start(self.see + 1))
+            if found is None or found[1] != m.end(self.see + 1):
+                return None
+            see = found[0]
+        i = self.game_state
+        game_state = None
+        if i >= 0:
+            unum = g[i]
+            game_state = GameState(None if unum is None else int(unum), g[i + 1], int(g[i + 2]), int(g[i + 3]),
+                                   float(g[i + 4]), g[i + 5])
+        gyro = acc = None
+        if self.gyro is not None:
+            name, i = self.gyro
+            gyro = Gyro(name, (float(g[i]), float(g[i + 1]), float(g[i + 2])))
+        if self.acc is not None:
+            name, i = self.acc
+            acc = Accelerometer(name, (float(g[i]), float(g[i + 1]), float(g[i + 2])))
+        frp = {}
+        for name, i in self.frp:
+            frp[name] = ForceResistance(name, (float(g[i]), float(g[i + 1]), float(g[i + 2])),
+                                        (float(g[i + 3]), float(g[i + 4]), float(g[i + 5])))
+        hears = []
+        for i in self.hears:
+            direction = g[i + 2]
+            hears.append(Hear(g[i], float(g[i + 1]), None if direction == "self" else float(direction), g[i + 3]))
+        return Sense(None if self.time < 0 else TimePerceptor(float(g[self.time])), game_state, gyro, acc,
+                     dict(zip(self.joint_names, map(float, self.joint_values(g)))), frp, tuple(hears), see, None, 0,
+                     self.order)
+
+
+class ShapeCache:
+    """The shapes of the messages parsed so far, looked up by their number of foot-pressure predicates (the
+    part of a shape that changes deep inside a message, where a failed match would cost most).
+
+    Args:
+        see_reader: the fast path's See reader: (text, raw bytes, offset of ``(See``) -> (See, offset after
+            it), or None when it does not recognise the predicate.
+    """
+
+    def __init__(self, see_reader: SeeReader) -> None:
+        self.see_reader = see_reader
+        self._by_frp_count: dict[int, list[_Shape]] = {}
+        self._count = 0
+
+    def parse(self, text: str, raw: bytes) -> Sense | None:
+        """The Sense of a message of a known shape, else None.
+
+        Raises:
+            ValueError: a number ``float`` refuses.
+        """
+        for shape in self._by_frp_count.get(text.count(_FRP_KEY), ()):
+            sense = shape.read(text, raw, self.see_reader)
+            if sense is not None:
+                return sense
+        return None
+
+    def learn(self, sense: Sense) -> None:
+        """Remember the shape of a message the fast path parsed (its ``order`` lists every predicate)."""
+        if self._count >= MAX_SHAPES:
+            self._by_frp_count.clear()
+            self._count = 0
+        shape = _Shape(sense)
+        self._by_frp_count.setdefault(shape.frp_count, []).append(shape)
+        self._count += 1
