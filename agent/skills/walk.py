@@ -19,6 +19,7 @@ import math
 from dataclasses import dataclass
 
 from agent.motion import MotionController, MotionRequest
+from agent.skills.avoid import AvoidConfig, Avoider
 from agent.skills.base import Skill
 from agent.world.frames import Pose2D
 from agent.world_model import WorldModel
@@ -57,6 +58,8 @@ class WalkConfig:
     starts from 0 whenever the walk is not in its cycle phases."""
     settle_after_turn_s: float = 0.3
     """Standing still after a turn motion before walking on [s]."""
+    avoid: AvoidConfig | None = AvoidConfig()
+    """Obstacle avoidance while walking toward a far target (``agent.skills.avoid``); None = walk straight."""
 
 
 def constant(motion: MotionController, name: str, key: str, default: float) -> float:
@@ -191,6 +194,7 @@ class WalkTo(Skill):
         self.reached = False
         self.corrections = 0
         self._steer = _Steer(self.config)
+        self._avoider = Avoider(self.config.avoid) if self.config.avoid else None
         self._correction: str | None = None
 
     def step(self, world: WorldModel, motion: MotionController) -> MotionRequest:
@@ -215,6 +219,11 @@ class WalkTo(Skill):
                 if forward > stop_distance_m(motion, FORWARD) + self.config.arrive_m / 2 and abs(bearing_deg) < 45:
                     return steer.request(FORWARD, lean=steer.smooth_lean(motion, _lean(bearing_deg, self.config)))
             return self._correct(motion, forward, left)
+        if self._avoider is not None:
+            escape = self._avoider.bearing_deg(world, (forward, left))
+            if escape is None:
+                return steer.request(None)  # surrounded: let the others pass
+            bearing_deg = escape
         return steer.heading(motion, bearing_deg)
 
     def _arrive(self, motion: MotionController, reached: bool) -> MotionRequest:
@@ -323,6 +332,7 @@ class WalkToBall(Skill):
     def reset(self) -> None:
         super().reset()
         self._steer = _Steer(self.config)
+        self._avoider = Avoider(self.config.avoid) if self.config.avoid else None
         self._search_cycles = 0
 
     def ball_ego(self, world: WorldModel) -> tuple[float, float] | None:
@@ -374,6 +384,11 @@ class WalkToBall(Skill):
         if distance > 0.6:
             if forward <= stop_distance_m(motion, FORWARD) + a.standoff_m and motion.motion_name == FORWARD:
                 return steer.request(None, head_deg=head)
+            if self._avoider is not None:
+                escape = self._avoider.bearing_deg(world, (to_forward, to_left))
+                if escape is None:
+                    return steer.request(None, head_deg=head)
+                bearing_deg = escape
             request = steer.heading(motion, bearing_deg)
             return MotionRequest(request.motion, request.lean, request.turn_deg, request.gain, head)
         # Close: line up with short walks along the larger error (forward only if it does not overshoot).
