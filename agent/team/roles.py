@@ -38,6 +38,11 @@ PENALTY_AREA_HALF_WIDTH_M = 3.0
 GOALKEEPER_UNUM = 1
 #: Support players stay at least this far from the ball [m].
 SUPPORT_CLEARANCE_M = 1.5
+#: Support spots stay this far from the on-ball player's path to the ball and from the ball's path on
+#: toward the goal [m] (a supporter standing there blocked the approach or the kick, and robots collided).
+PATH_CLEARANCE_M = 1.0
+#: Length of the ball's path toward the goal that support spots keep clear of [m].
+BALL_PATH_M = 3.0
 #: Field bounds the support spots are kept inside, team frame [m]; field players stay out of the own
 #: penalty area (more than 3 defenders there is a foul, REFERENCE §4.5 "illegal defence").
 FIELD_X_MIN_M = PENALTY_AREA_X_M + 0.4
@@ -119,10 +124,31 @@ def choose_on_ball(players: list[Candidate], ball: tuple[float, float], holder: 
     return min(allowed, key=lambda p: (on_ball_cost(p, ball, holder), p.unum)).unum
 
 
-def support_spot(unum: int, ball: tuple[float, float] | None) -> tuple[float, float]:
+def clear_of_segment(point: tuple[float, float], start: tuple[float, float], end: tuple[float, float],
+                     clearance_m: float) -> tuple[float, float]:
+    """``point`` moved straight away from the segment start-end until it is ``clearance_m`` from it (unchanged
+    if already that far; a point on the segment goes to its left side, seen from start to end)."""
+    sx, sy = end[0] - start[0], end[1] - start[1]
+    length_sq = sx * sx + sy * sy
+    t = 0.0 if length_sq < 1e-12 else max(0.0, min(1.0, ((point[0] - start[0]) * sx + (point[1] - start[1]) * sy)
+                                                    / length_sq))
+    nearest = (start[0] + t * sx, start[1] + t * sy)
+    dx, dy = point[0] - nearest[0], point[1] - nearest[1]
+    distance = math.hypot(dx, dy)
+    if distance >= clearance_m:
+        return point
+    if distance < 1e-6:
+        length = math.sqrt(length_sq) or 1.0
+        dx, dy, distance = -sy / length, sx / length, 1.0
+    return nearest[0] + dx / distance * clearance_m, nearest[1] + dy / distance * clearance_m
+
+
+def support_spot(unum: int, ball: tuple[float, float] | None,
+                 holder: tuple[float, float] | None = None) -> tuple[float, float]:
     """Where a player that does not play the ball stands [m]: its formation spot shifted with the ball
-    (forward when the ball is forward), kept in the field, out of the own penalty area, and
-    ``SUPPORT_CLEARANCE_M`` from the ball."""
+    (forward when the ball is forward), kept in the field, out of the own penalty area,
+    ``SUPPORT_CLEARANCE_M`` from the ball, and ``PATH_CLEARANCE_M`` from the paths of the play: the on-ball
+    player's (``holder``'s position, if known) to the ball and the ball's on toward the opponent goal."""
     home = beam_spot(unum)
     if ball is None:
         return home.x_m, home.y_m
@@ -137,6 +163,13 @@ def support_spot(unum: int, ball: tuple[float, float] | None) -> tuple[float, fl
         if distance < 1e-6:
             dx, dy, distance = -1.0, 0.0, 1.0
         x, y = ball[0] + dx / distance * SUPPORT_CLEARANCE_M, ball[1] + dy / distance * SUPPORT_CLEARANCE_M
+    to_goal = math.atan2(OPPONENT_GOAL_M[1] - ball[1], OPPONENT_GOAL_M[0] - ball[0])
+    ahead = (ball[0] + BALL_PATH_M * math.cos(to_goal), ball[1] + BALL_PATH_M * math.sin(to_goal))
+    x, y = clear_of_segment((x, y), ball, ahead, PATH_CLEARANCE_M)
+    if holder is not None:
+        x, y = clear_of_segment((x, y), holder, ball, PATH_CLEARANCE_M)
+    x = max(FIELD_X_MIN_M, min(FIELD_X_LIMIT_M, x))
+    y = max(-FIELD_Y_LIMIT_M, min(FIELD_Y_LIMIT_M, y))
     return x, y
 
 
@@ -146,5 +179,5 @@ def keeper_spot(ball: tuple[float, float] | None) -> tuple[float, float]:
     return KEEPER_X_M, y
 
 
-__all__ = ["Candidate", "ball_belief", "candidates", "choose_on_ball", "keeper_plays_ball", "keeper_spot",
-           "on_ball_cost", "support_spot"]
+__all__ = ["Candidate", "ball_belief", "candidates", "choose_on_ball", "clear_of_segment", "keeper_plays_ball",
+           "keeper_spot", "on_ball_cost", "support_spot"]

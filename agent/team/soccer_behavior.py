@@ -98,13 +98,15 @@ class SoccerBehavior:
             self.role = "search"
             self._use(("search",), WalkToBall)  # stands and sweeps the head until the ball is seen
             return
-        self.holder = roles.choose_on_ball(roles.candidates(world), ball, self.holder)
+        players = roles.candidates(world)
+        self.holder = roles.choose_on_ball(players, ball, self.holder)
         if self.holder == world.unum and set_piece is not False:
             self.role = "on_ball"
             self._play_ball(ball)
             return
         self.role = "support"
-        spot = roles.support_spot(world.unum, ball)
+        holder = next(((p.x_m, p.y_m) for p in players if p.unum == self.holder), None)
+        spot = roles.support_spot(world.unum, ball, holder)
         if set_piece is False:
             spot = _keep_clear(spot, ball, SET_PIECE_CLEARANCE_M)
         self._stand_at(world, spot, ball)

@@ -79,3 +79,23 @@ def test_the_own_position_in_team_decisions_is_the_one_the_teammates_heard():
     assert world.own_report.position == (-3.0, 1.0)
     # Not localized: no candidate at all (a player that does not know where it is does not claim the ball).
     assert candidates(world) == []
+
+
+def test_support_spots_keep_clear_of_the_on_ball_players_path_and_the_balls_way_to_goal():
+    from agent.team.roles import BALL_PATH_M, OPPONENT_GOAL_M, PATH_CLEARANCE_M, clear_of_segment
+
+    def distance_to_segment(p, a, b):
+        ax, ay, bx, by = *a, *b
+        t = max(0.0, min(1.0, ((p[0] - ax) * (bx - ax) + (p[1] - ay) * (by - ay)) / ((bx - ax) ** 2 + (by - ay) ** 2)))
+        return math.dist(p, (ax + t * (bx - ax), ay + t * (by - ay)))
+
+    assert clear_of_segment((1.0, 0.2), (0.0, 0.0), (3.0, 0.0), 1.0) == pytest.approx((1.0, 1.0))
+    assert clear_of_segment((1.0, 3.0), (0.0, 0.0), (3.0, 0.0), 1.0) == (1.0, 3.0)
+    for unum in (2, 3, 4, 7, 9):
+        for ball in ((-5.0, -3.0), (0.0, 0.0), (4.0, 2.0)):
+            holder = (ball[0] - 3.0, ball[1] + 0.5)
+            spot = support_spot(unum, ball, holder)
+            assert distance_to_segment(spot, holder, ball) >= PATH_CLEARANCE_M - 1e-6
+            heading = math.atan2(OPPONENT_GOAL_M[1] - ball[1], OPPONENT_GOAL_M[0] - ball[0])
+            ahead = (ball[0] + BALL_PATH_M * math.cos(heading), ball[1] + BALL_PATH_M * math.sin(heading))
+            assert distance_to_segment(spot, ball, ahead) >= PATH_CLEARANCE_M - 1e-6
