@@ -318,8 +318,10 @@ class MotorBank:
             # A stop row only pushes the joint out of its stop; one that had to pull is released (ODE's LCP
             # bounds the row's force to that side) and the step redone, with the motors' corrections below.
             pulling = at_stop & (self.gain > 0.0) & (self.stop_side * self.stop_torque > _STOP_PULL_TOLERANCE_NM)
-            if np.count_nonzero(pulling):
-                self.gain = np.where(pulling, 0.0, self.gain)
+            # and a released one whose joint then went into the stop faster than the row allows holds again
+            pushing = at_stop & (self.gain == 0.0) & (self.stop_side * (velocity - self.setpoint) > 0.0)
+            if np.count_nonzero(pulling) or np.count_nonzero(pushing):
+                self.gain = np.where(pulling, 0.0, np.where(pushing, kv, self.gain))
                 released = True
         # A motor held at its bound that drove its joint past the target velocity was not saturated: ODE's
         # motor would have braked there. It becomes a stiff servo again (measured against the real server:
