@@ -6,8 +6,9 @@ the walk stance at a seeded yaw, nudged by a seeded push and spin, left to settl
 the time from the motion's start until the robot stands for good (torso above 0.30 m, up axis z above 0.9,
 feet carrying the robot), or, if it never does, 6 s plus how far it stayed from standing (at the end and at
 its best moment) and how much of its weight its feet ever carried. Penalties: a torso turned upside down (a flip is fragile), the server's self-collision
-rule firing (it would freeze joints in a match, REFERENCE §4.5), a diverging simulation (counted as a
-failure). The candidate's loss is the mean over the starts.
+rule firing (it would freeze joints in a match, REFERENCE §4.5), the simulator's blow-up guard firing (a
+hinge driven far past its stop, e.g. an arm crushed under the body). The candidate's loss is the mean over the starts; with ``--noise`` every start but the first plays
+the candidate with seeded noise on its durations and angles, so that knife-edge candidates lose.
 
 Run::
 
@@ -62,6 +63,7 @@ INVERTED_UP_Z = -0.45
 INVERTED_LOSS = 3.0
 SELF_COLLISION_LOSS = 0.5
 SELF_COLLISION_CAP = 6
+BLOWUP_LOSS = 2.0
 
 
 @dataclass(frozen=True)
@@ -85,6 +87,7 @@ class Dimension:
 GROUND_BOUNDS: dict[str, tuple[float, float, bool]] = {
     "duration_ms": (60, 600, True), "hip_yaw_pitch_deg": (-89.0, 0.0, False), "hip_roll_deg": (-20.0, 40.0, False),
     "hip_pitch_deg": (-24.0, 99.0, False), "knee_deg": (-129.0, 0.0, False), "ankle_pitch_deg": (-44.0, 74.0, False),
+    "ankle_roll_deg": (-40.0, 20.0, False),
     "shoulder_pitch_deg": (-119.0, 119.0, False), "shoulder_roll_deg": (-0.5, 94.0, False),
     "elbow_yaw_deg": (-119.0, 119.0, False), "elbow_roll_deg": (0.0, 89.0, False),
 }
@@ -99,7 +102,7 @@ POSE_BOUNDS: dict[str, tuple[float, float, bool]] = {
 
 
 def dimensions(params: StandUpParams, frozen: frozenset[str] = frozenset()) -> list[Dimension]:
-    """Every tuned parameter of a stand-up with its bounds (ankle roll stays as it is); ``frozen`` names
+    """Every tuned parameter of a stand-up with its bounds; ``frozen`` names
     ground phases (or ``ready``) kept as they are."""
     dims = [Dimension(name, *bounds) for name, bounds in POSE_BOUNDS.items()
             if not (name == "ready_ms" and "ready" in frozen)]
@@ -130,15 +133,46 @@ def with_values(params: StandUpParams, values: dict[str, float]) -> StandUpParam
 @dataclass(frozen=True)
 class Start:
     """A lying start: the pose before the lay-down (None = the walk stance, else the seed of a
-    ``skill_bench.standup.prepose``), yaw [deg], torso push [m/s] and spin [rad/s] right after the lay-down."""
+    ``skill_bench.standup.prepose``), yaw [deg], torso push [m/s] and spin [rad/s] right after the lay-down,
+    and the seed of the noise put on the candidate's parameters for this start (None = none)."""
 
     pose_seed: int | None
     yaw_deg: float
     push_m_s: tuple[float, float, float]
     spin_rad_s: tuple[float, float, float]
+    noise_seed: int | None = None
 
 
-def default_starts(count: int = 4, seed: int = 1) -> tuple[Start, ...]:
+#: Parameter noise of a noisy start: durations scaled by 1 +- DURATION_NOISE, ground-phase angles moved by up
+#: to ANGLE_NOISE_DEG, crouch lean by up to ANGLE_NOISE_DEG and height by up to HEIGHT_NOISE_M (uniform). A
+#: candidate that only works exactly as written is a knife edge; one that works under this noise is not.
+DURATION_NOISE = 0.08
+ANGLE_NOISE_DEG = 3.0
+HEIGHT_NOISE_M = 0.005
+
+
+def noisy(params: StandUpParams, seed: int) -> StandUpParams:
+    """``params`` with seeded noise on durations, ground-phase angles and the crouch (see the constants)."""
+    rng = random.Random(seed)
+
+    def ms(value: int) -> int:
+        return max(20, int(round(value * (1.0 + rng.uniform(-DURATION_NOISE, DURATION_NOISE)))))
+
+    ground = []
+    for pose in params.ground:
+        changes: dict[str, float] = {"duration_ms": ms(pose.duration_ms)}
+        for name, (low, high, _) in GROUND_BOUNDS.items():
+            if name != "duration_ms":
+                value = getattr(pose, name) + rng.uniform(-ANGLE_NOISE_DEG, ANGLE_NOISE_DEG)
+                changes[name] = min(high, max(low, value))
+        ground.append(replace(pose, **changes))
+    return replace(params, ground=tuple(ground), ready_ms=ms(params.ready_ms), crouch_ms=ms(params.crouch_ms),
+                   rise_ms=ms(params.rise_ms), stance_ms=ms(params.stance_ms),
+                   crouch_pitch_deg=params.crouch_pitch_deg + rng.uniform(-ANGLE_NOISE_DEG, ANGLE_NOISE_DEG),
+                   crouch_height_m=params.crouch_height_m + rng.uniform(-HEIGHT_NOISE_M, HEIGHT_NOISE_M))
+
+
+def default_starts(count: int = 4, seed: int = 1, noise: bool = False) -> tuple[Start, ...]:
     """The first start from the walk stance, then seeded poses near it, yaws, pushes up to 0.3 m/s and spins
     up to 0.6 rad/s (the lying body comes to rest on its flat torso, so the pose matters most)."""
     rng = random.Random(f"tune_standup/{seed}")
@@ -148,7 +182,8 @@ def default_starts(count: int = 4, seed: int = 1) -> tuple[Start, ...]:
         push = rng.uniform(0.0, 0.3)
         spin = tuple(round(rng.uniform(-0.6, 0.6), 3) for _ in range(3))
         starts.append(Start(seed * 100 + index, round(rng.uniform(-180.0, 180.0), 1),
-                            (round(push * math.cos(angle), 3), round(push * math.sin(angle), 3), 0.0), spin))  # type: ignore[arg-type]
+                            (round(push * math.cos(angle), 3), round(push * math.sin(angle), 3), 0.0), spin,  # type: ignore[arg-type]
+                            seed * 100 + 50 + index if noise else None))
     return tuple(starts)
 
 
@@ -163,7 +198,8 @@ class Rollout:
     """Standing-ness in [0, 1] (torso height and up axis) at the end / at its best 0.2 s."""
     min_up_z: float
     self_collisions: int
-    diverged: bool
+    blowups: int
+    """Cycles the simulator restarted because the robot's physics blew up (a hinge far past its stop)."""
     best_feet_load: float = 0.0
     """Largest 0.2 s mean of the vertical foot force over the robot's weight (the weight on the feet is
     what a stand-up must reach; it shapes the loss of the failures)."""
@@ -173,8 +209,7 @@ class Rollout:
         loss = self.time_s if self.time_s is not None else \
             FAIL_LOSS + 3.0 * (1.0 - self.final_score) + 3.0 * (1.0 - self.best_score) + \
             2.0 * (1.0 - self.best_feet_load)
-        if self.diverged:
-            return FAIL_LOSS + 6.0
+        loss += BLOWUP_LOSS * min(self.blowups, 3)
         if self.min_up_z < INVERTED_UP_Z:
             loss += INVERTED_LOSS
         return loss + SELF_COLLISION_LOSS * min(self.self_collisions, SELF_COLLISION_CAP)
@@ -207,12 +242,17 @@ def rollout(motion: Motion, side: str, start: Start, seed: int = 0) -> Rollout:
     scenario.set_skill(PlayMotion(motion.name))
     data = scenario.world.data
     warnings = data.warning[mujoco.mjtWarning.mjWARN_BADQACC].number
+    divergences = getattr(scenario.world, "divergences", 0)
     cycles = round(min(MAX_S, motion.duration_s + AFTER_S) / CYCLE_S)
-    scores, standing, min_up, collisions, loads = [], [], 1.0, 0, []
+    scores, standing, min_up, collisions, loads, blowups = [], [], 1.0, 0, [], 0
     for cycle in range(cycles):
         truth = scenario.run(1)[0]
-        if data.warning[mujoco.mjtWarning.mjWARN_BADQACC].number != warnings:
-            return Rollout(None, 0.0, 0.0, -1.0, collisions, True)
+        if (data.warning[mujoco.mjtWarning.mjWARN_BADQACC].number != warnings
+                or getattr(scenario.world, "divergences", 0) != divergences):
+            # the simulator put the robot back to the cycle's start at rest (a joint far past its stop)
+            blowups += 1
+            warnings = data.warning[mujoco.mjtWarning.mjWARN_BADQACC].number
+            divergences = getattr(scenario.world, "divergences", 0)
         if cycle % 2 == 0 and colliding_pairs(0, scenario.engine.robot_body_poses()[0][3], 0.04):
             collisions += 1
         forces = scenario.world.foot_forces(scenario.key).values()
@@ -228,26 +268,29 @@ def rollout(motion: Motion, side: str, start: Start, seed: int = 0) -> Rollout:
     window = np.convolve(scores, np.ones(10) / 10, mode="valid")
     load = np.convolve(loads, np.ones(10) / 10, mode="valid")
     return Rollout(round(first * CYCLE_S, 2) if held else None, float(np.mean(scores[-25:])),
-                   float(window.max()) if window.size else 0.0, min_up, collisions, False,
+                   float(window.max()) if window.size else 0.0, min_up, collisions, blowups,
                    float(load.max()) if load.size else 0.0)
 
 
 def evaluate(section: str, params: StandUpParams, starts: tuple[Start, ...]) -> dict[str, object]:
     """Loss and per-start figures of one candidate (a pose out of reach is a failed candidate)."""
     side = STANDUPS[section]
-    try:
-        motion = build_standup(section, params, side, stance_params())
-    except ValueError as error:
-        return {"loss": 2 * FAIL_LOSS + 6.0, "error": str(error)}
-    runs = [rollout(motion, side, start, seed=i) for i, start in enumerate(starts)]
+    stance = stance_params()
+    runs = []
+    for i, start in enumerate(starts):
+        try:
+            candidate = params if start.noise_seed is None else noisy(params, start.noise_seed)
+            motion = build_standup(section, candidate, side, stance)
+        except ValueError as error:
+            return {"loss": 2 * FAIL_LOSS + 6.0, "error": str(error)}
+        runs.append(rollout(motion, side, start, seed=i))
     losses = [run.loss for run in runs]
     return {"loss": float(np.mean(losses)), "losses": [round(v, 3) for v in losses],
             "times_s": [run.time_s for run in runs], "self_collisions": [run.self_collisions for run in runs]}
 
 
-def _evaluate_packed(packed: tuple[str, dict, tuple[Start, ...]]) -> dict[str, object]:
-    section, values, starts = packed
-    base = load_standup_params()[section]
+def _evaluate_packed(packed: tuple[str, StandUpParams, dict, tuple[Start, ...]]) -> dict[str, object]:
+    section, base, values, starts = packed
     return evaluate(section, with_values(base, values), starts)
 
 
@@ -273,7 +316,7 @@ def tune(section: str, base: StandUpParams, generations: int, starts: tuple[Star
             started = time.perf_counter()
             candidates = es.ask()
             values = [{d.path: d.from_unit(u) for d, u in zip(dims, x)} for x in candidates]
-            packed = [(section, v, starts) for v in values]
+            packed = [(section, base, v, starts) for v in values]
             results = list(pool.map(_evaluate_packed, packed)) if pool else [_evaluate_packed(p) for p in packed]
             losses = [float(r["loss"]) for r in results]
             es.tell(losses)
@@ -319,6 +362,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--sigma", type=float, default=0.1, help="initial CMA-ES step (unit box)")
     parser.add_argument("--popsize", type=int, default=None)
     parser.add_argument("--starts", type=int, default=4, help="lying starts per candidate")
+    parser.add_argument("--noise", action="store_true", help="put seeded parameter noise on every start but the first")
     parser.add_argument("--workers", type=int, default=1)
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--checkpoint", type=Path, default=None, help="default /tmp/nao3d-tune/<section>.json")
@@ -327,7 +371,7 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     base = load_standup_params()[args.section]
     checkpoint = args.checkpoint or CHECKPOINT_DIR / f"{args.section}.json"
-    starts = default_starts(args.starts)
+    starts = default_starts(args.starts, noise=args.noise)
     frozen = frozenset(name for name in args.freeze.split(",") if name)
     best = tune(args.section, base, args.generations, starts, args.sigma, args.popsize, args.workers, checkpoint,
                 args.seed, frozen)

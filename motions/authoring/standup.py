@@ -61,6 +61,11 @@ COM_TOLERANCE_M = 1e-4
 #: Bodies whose reach below the lying torso's ground face is reported for the ground phases.
 PROP_POINTS = {"hands": ("lhand", "rhand"), "shanks": ("lshank", "rshank"), "soles": ("lsole", "rsole")}
 TORSO_HALF_DEPTH_M = 0.05  # torso box 0.10 deep (REFERENCE §2.1)
+SOLE_HALF_THICKNESS_M = 0.01  # foot box 0.02 thick; the sole site is the box centre
+#: A ground keyframe whose soles can lie within this of flat counts as standing on its feet [deg].
+FLAT_TOLERANCE_DEG = 5.0
+#: Bodies that must stay off the ground when the robot squats on its feet.
+CLEARANCE_BODIES = ("torso", "lthigh", "rthigh", "lshank", "rshank")
 
 
 @dataclass(frozen=True)
@@ -221,6 +226,29 @@ class SagittalSolver:
         com = (rotation @ self.kinematics.com(angles))[:2]
         return _inside_distance(hull, com)
 
+    def on_flat_feet(self, angles: Mapping[str, float]) -> tuple[float, float, float] | None:
+        """If the soles can both be flat on the ground at some torso lean, (lean [deg], CoM ahead of the
+        sole centres [m], lowest point of the torso, thighs and shanks above the ground [m]); else None.
+
+        Used to check squat-like keyframes (e.g. a frog squat with the knees apart) without solving for them.
+        """
+        best = None
+        for pitch_deg in range(-60, 91):
+            rotation = torso_rotation(math.radians(pitch_deg))
+            tilt = math.acos(max(-1.0, min(1.0, (rotation @ self.kinematics.frame_pose("lsole", angles).rotation)[2, 2])))
+            if best is None or tilt < best[0]:
+                best = (tilt, pitch_deg)
+        if best is None or math.degrees(best[0]) > FLAT_TOLERANCE_DEG:
+            return None
+        pitch_deg = best[1]
+        rotation = torso_rotation(math.radians(pitch_deg))
+        sole = rotation @ self.kinematics.frame_pose("lsole", angles).position_m
+        com = rotation @ self.kinematics.com(angles)
+        ground_z = sole[2] - SOLE_HALF_THICKNESS_M
+        lowest = min(float((rotation @ _box_corners(self.kinematics, body, angles))[2].min())
+                     for body in CLEARANCE_BODIES)
+        return float(pitch_deg), float(com[1] - sole[1]), lowest - ground_z
+
     def prop_depths_m(self, angles: Mapping[str, float], side: str) -> dict[str, float]:
         """How far each limb group reaches below the face the torso lies on [m] (+ = it props the torso up).
 
@@ -232,6 +260,14 @@ class SagittalSolver:
             reach = max(float(down @ self.kinematics.frame_pose(frame, angles).position_m) for frame in frames)
             depths[group] = round(reach - TORSO_HALF_DEPTH_M, 3)
         return depths
+
+
+def _box_corners(kinematics: NaoKinematics, body: str, angles: Mapping[str, float]) -> np.ndarray:
+    """The 8 corners of a body's box in the torso frame, 3 x 8 [m]."""
+    sx, sy, sz = kinematics.spec.body(body).shape.size
+    pose = kinematics.frame_pose(body, angles)
+    corners = np.array([[x * sx / 2, y * sy / 2, z * sz / 2] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)]).T
+    return pose.rotation @ corners + pose.position_m[:, None]
 
 
 def _inside_distance(hull: np.ndarray, point: np.ndarray) -> float:
@@ -341,6 +377,9 @@ class KeyPose:
     note: str = ""
     com_margin_m: float | None = None
     prop_depths_m: dict[str, float] = field(default_factory=dict)
+    squat: tuple[float, float, float] | None = None
+    """For a ground keyframe that can stand on flat feet: (torso lean [deg], CoM ahead of the soles [m],
+    body clearance [m]); see ``SagittalSolver.on_flat_feet``."""
 
 
 def key_poses(params: StandUpParams, side: str, stance: GaitParams, solver: SagittalSolver | None = None,
@@ -360,9 +399,13 @@ def key_poses(params: StandUpParams, side: str, stance: GaitParams, solver: Sagi
     for ground in params.ground:
         angles = ground.angles_rad()
         depths = solver.prop_depths_m(angles, side)
-        note = ", ".join(f"{group} {depth:+.3f} m" for group, depth in depths.items())
-        poses.append(KeyPose(ground.name, ground.duration_ms, angles, f"reach below the torso face: {note}",
-                             prop_depths_m=depths))
+        note = "reach below the torso face: " + ", ".join(f"{group} {depth:+.3f} m" for group, depth in depths.items())
+        squat = solver.on_flat_feet(angles)
+        if squat is not None:
+            lean, com_forward, clearance = squat
+            note += (f"; on flat feet at a {lean:.0f} deg lean the CoM is {com_forward * 1000:+.0f} mm ahead of the "
+                     f"soles, the body {clearance * 1000:.0f} mm above the ground")
+        poses.append(KeyPose(ground.name, ground.duration_ms, angles, note, prop_depths_m=depths, squat=squat))
     crouch_arms = {k: v for k, v in symmetric_angles_rad(shoulder_pitch_deg=params.crouch_shoulder_pitch_deg,
                                                           shoulder_roll_deg=stance.arm.shoulder_roll_deg).items()
                    if k in ARMS}
