@@ -22,9 +22,15 @@ sessions), benchmarks/bench_sim.py.
   outside the tree) and its ``forcerange`` clamp is decided on the explicit force kv·(u - q̇), which
   saturates every light joint at once and overshoots by ~100 rad/s in one step. The 10 N·m bound is kept
   by `sim.effectors.MotorBank`: lowered gains where the bound would be exceeded, a constant ±10 N·m where
-  a load overpowers the motor, and a re-solve of the step when the guess was wrong (off the stops no
-  motor exceeds 10.5 N·m, even under random ±6 rad/s commands).
-* **Contacts.** μ = ∞ in SimSpark (slip only through soft ERP/CFM); here Coulomb μ = 2, condim 3,
+  a load overpowers the motor, and a re-solve of the step when the guess was wrong (random ±6 rad/s
+  commands flailing a robot against its stops: 0.07 % of the motor torques over 10.5 N·m, the worst 17).
+* **Joint stops = ODE's** (StopERP 0.8, Bounce 1, FudgeFactor 1e-5), also in `sim.effectors.MotorBank`;
+  MuJoCo's limit rows are off. A joint driven into its stop bounces back inside a step later, as the
+  real fall trace shows (a hip at 3 rad/s into its 100° stop: 100.24 / 96.81° alternating); MuJoCo's
+  soft limit held it past the stop, where every command is ignored (an open-loop turn fell that way).
+* **Contacts.** μ = ∞ in SimSpark (slip only through force-dependent slip and soft ERP/CFM, friction even at
+  zero normal force inside ODE's 1 mm surface layer: the real FRP shows 24 N sideways with 0 N normal on a
+  lifting foot); here Coulomb μ = 2, condim 3,
   elliptic cones: pyramidal cones make ``mj_step`` 2x cheaper but split a standing robot's weight
   unevenly between the feet once μ >= 0.8 (18.4 / 26.8 N at μ = 2, depending on the heading against the
   world axes), elliptic gives 22.60 / 22.60 N like the real server. solimp (0.2, 0.3, 0.001): the
