@@ -40,8 +40,10 @@ from motions.authoring.kick import (COMMON, PARAMS_PATH, KickParams, build_kick,
                                     stance_params, write_all)
 
 CHECKPOINT_DIR = Path("/tmp/nao3d-tune")
-#: Placements every candidate is tried from: the nominal spot and errors a positioning skill leaves.
-PLACEMENTS = (Placement(), Placement(0.02, 0.0, 0.0), Placement(-0.02, 0.015, 0.0), Placement(0.0, -0.015, 4.0))
+#: Placements every candidate is tried from: the nominal spot and errors a positioning skill leaves. Dense
+#: along the kick line: with only 0 and +-2 cm the search found kicks that failed at +-0.5 to 1 cm.
+PLACEMENTS = (Placement(), Placement(0.015, 0.0, 0.0), Placement(-0.015, 0.01, 0.0), Placement(0.0075, -0.01, 3.0),
+              Placement(-0.0075, 0.0, -3.0), Placement(0.004, 0.015, 0.0))
 
 
 @dataclass(frozen=True)
@@ -67,19 +69,19 @@ class Dimension:
 #: at least 0.134 m ahead of the support sole's centre, about 1.2 cm clear of the stance toes, so that the
 #: weight shift does not nudge it).
 SPACE = (
-    Dimension("shift_ms", 300, 700, 20), Dimension("com_inset_m", -0.01, 0.025), Dimension("com_forward_m", -0.02, 0.03),
+    Dimension("shift_ms", 300, 700, 20), Dimension("com_inset_m", -0.01, 0.025), Dimension("com_forward_m", -0.02, 0.05),
     Dimension("torso_pitch_deg", -4.0, 8.0), Dimension("torso_height_m", 0.32, 0.36),
-    Dimension("shift_torso_roll_deg", -6.0, 6.0), Dimension("lift_height_m", 0.02, 0.06),
-    Dimension("kick_foot_x_m", 0.06, 0.11), Dimension("windup_ms", 100, 300, 20),
+    Dimension("shift_torso_roll_deg", -10.0, 6.0), Dimension("lift_height_m", 0.02, 0.06),
+    Dimension("kick_foot_x_m", 0.05, 0.11), Dimension("windup_ms", 100, 300, 20),
     Dimension("windup_back_m", -0.12, -0.03), Dimension("windup_height_m", 0.03, 0.10),
     Dimension("windup_pitch_deg", -45.0, 0.0), Dimension("windup_yaw_deg", -12.0, 0.0),
     Dimension("windup_torso_pitch_deg", -5.0, 12.0), Dimension("windup_torso_yaw_deg", -20.0, 0.0),
     Dimension("strike_torso_yaw_deg", -10.0, 0.0), Dimension("swing_ms", 0, 60, 20),
     Dimension("swing_forward_m", -0.05, 0.04), Dimension("swing_height_m", 0.02, 0.06),
-    Dimension("strike_ms", 20, 100, 20), Dimension("strike_forward_m", 0.06, 0.18),
-    Dimension("strike_height_m", 0.02, 0.08), Dimension("strike_pitch_deg", -15.0, 30.0),
+    Dimension("strike_ms", 20, 160, 20), Dimension("strike_forward_m", 0.06, 0.18),
+    Dimension("strike_height_m", 0.02, 0.08), Dimension("strike_pitch_deg", -35.0, 30.0),
     Dimension("follow_ms", 20, 200, 20), Dimension("retract_ms", 200, 500, 20), Dimension("land_ms", 200, 500, 20),
-    Dimension("recover_ms", 300, 700, 20), Dimension("arm_swing_deg", 0.0, 40.0),
+    Dimension("recover_ms", 300, 900, 20), Dimension("arm_swing_deg", 0.0, 40.0),
     Dimension("ball_ahead_m", 0.134, 0.23), Dimension("ball_side_m", 0.03, 0.13),
 )
 

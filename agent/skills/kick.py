@@ -12,7 +12,7 @@ knows the spot to stand on for either foot. Lining up, with the motions the libr
    walk (``walk_left`` / ``walk_right`` / ``walk_forward`` / ``walk_backward``) while the error exceeds half
    of what one short walk moves (the walks are cyclic gaits: a single request walks a whole start and stop
    ramp, 0.12 m sideways and 0.35 m forward on our simulator), then with the kick steps
-   (``kick_step_left`` ... of ``motions.authoring.kick_steps``: 3-4 cm each);
+   (``kick_step_left`` ... of ``motions.authoring.kick_steps``: 2 cm each);
 3. kick once the ball lies within the kick's tolerance of its spot, or once the corrections are used up and
    it lies within the loose tolerance; else give up (``done`` with ``kicked`` False).
 
@@ -57,13 +57,13 @@ class KickConfig:
 
     heading_tol_deg: float = 6.0
     """Aim error corrected with a turn motion when larger [deg]."""
-    forward_tol_m: float = 0.025
+    forward_tol_m: float = 0.012
     """Ball along the kick line off its spot: kick when within [m]."""
-    lateral_tol_m: float = 0.02
+    lateral_tol_m: float = 0.015
     """Ball across the kick line off its spot: kick when within [m]."""
-    loose_forward_m: float = 0.05
+    loose_forward_m: float = 0.025
     """After the corrections are used up, kick if the ball is this close along the line [m]..."""
-    loose_lateral_m: float = 0.04
+    loose_lateral_m: float = 0.03
     """... and this close across it [m]."""
     side_step_m: float = 0.12
     """Sideways displacement of one short sideways walk [m] (measured: walk_left/right, one request)."""
@@ -75,7 +75,7 @@ class KickConfig:
     """Beyond this distance from the kick spot the robot walks to a point behind it first [m]."""
     approach_back_m: float = 0.30
     """That point lies this far behind the kick spot on the kick line [m]."""
-    max_corrections: int = 10
+    max_corrections: int = 12
     """Corrections near the ball before kicking within the loose tolerance or giving up."""
     max_approaches: int = 2
     """Walks to the point behind the spot before the skill corrects with short walks only."""

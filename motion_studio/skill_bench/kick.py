@@ -297,4 +297,30 @@ def plot(result: dict, out_dir: pathlib.Path) -> list[pathlib.Path]:
     return [path]
 
 
-__all__ = ["TARGETS", "challenge", "motion_trials", "plot", "run", "skill_run", "skill_trial", "summary"]
+
+
+
+def main(argv: list[str] | None = None) -> None:
+    """``python -m motion_studio.skill_bench.kick [--quick] [--seed N] [--out DIR]``: run, write kick.json
+    and kick.png into DIR, print the summary."""
+    import argparse
+    import json
+
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true")
+    parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--out", type=pathlib.Path, default=pathlib.Path("/tmp/nao3d-bench/kick"))
+    args = parser.parse_args(argv)
+    result = run(args.quick, args.seed, lambda done, total: print(f"{done}/{total}", flush=True))
+    args.out.mkdir(parents=True, exist_ok=True)
+    (args.out / "kick.json").write_text(json.dumps(result, indent=1))
+    for path in plot(result, args.out):
+        print(f"wrote {path}")
+    print(json.dumps({k: v for k, v in result.items() if k != "trials"}, indent=1))
+
+
+__all__ = ["TARGETS", "challenge", "main", "motion_trials", "plot", "run", "skill_run", "skill_trial", "summary"]
+
+
+if __name__ == "__main__":
+    main()
