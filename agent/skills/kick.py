@@ -156,6 +156,7 @@ class KickToward(Skill):
         self._walk_to: WalkTo | None = None
         self._approaches = 0
         self._lost_since_s: float | None = None
+        self._unlocalized_since_s: float | None = None
 
     # ---- perception -----------------------------------------------------------------------------------
     def _ball_ego(self, world: WorldModel) -> tuple[float, float] | None:
@@ -274,9 +275,13 @@ class KickToward(Skill):
     def _approach(self, world: WorldModel, ball: tuple[float, float], spot: Spot, aim_rad: float) -> MotionRequest:
         """Walk to a point behind the kick spot on the kick line (team frame through the pose)."""
         pose = world.pose
-        if pose is None:
-            self.done, self.reason = True, "not localized: cannot walk to the ball"
-            return self._request(None, ball)
+        if pose is None:  # not localized yet: look up at the landmarks for a while
+            if self._unlocalized_since_s is None:
+                self._unlocalized_since_s = world.now_s
+            if world.now_s - self._unlocalized_since_s > self.config.lost_timeout_s:
+                self.done, self.reason = True, "not localized: cannot walk to the ball"
+            sweep = 60.0 * math.sin((world.now_s - self._unlocalized_since_s) * 1.5)
+            return MotionRequest(None, head_deg=(sweep, 0.0))
         c, s = math.cos(aim_rad), math.sin(aim_rad)
         back = spot.forward_m + self.config.approach_back_m
         # The ego point from which, facing the aim, the ball lies at (back, spot.left_m).

@@ -9,7 +9,8 @@ Trials:
   request to the ball contact, trapped balls (the toe ran under the ball and our simulator's stiff contact
   threw the foot up), ball height.
 * **skill**: ``agent.skills.kick.KickToward`` toward a point 10 m ahead, the robot placed just behind the
-  ball with a larger seeded error (±5 cm, ±10°); the skill lines up from its own world model: time from
+  ball with a larger seeded error (ball -1 to +8 cm along, ±5 cm across, heading ±10°); the skill lines up
+  from its own world model: time from
   the skill's start to the contact, distance, direction error, falls, kicks played.
 * **kick challenge** (magmaChallenge v3.2, REFERENCE §8.2): 10 attempts toward (0, 0), the ball at seeded
   distances from 3 to 12 m in the own half within ±45°, the robot 1 m behind it facing it; KickToward with
@@ -40,8 +41,9 @@ KINDS = ("kick", "kick_strong")
 KICKS_PER_KIND, KICKS_PER_KIND_QUICK = 10, 2
 #: Motion trials: uniform placement error half-ranges (forward m, left m, heading deg).
 MOTION_SPREAD = (0.02, 0.015, 3.0)
-#: Skill trials: robot placement error half-ranges around the kick spot (forward m, left m, heading deg).
-SKILL_SPREAD = (0.05, 0.05, 10.0)
+#: Skill trials: ranges of the ball's offset from the kick spot (forward m, left m) and of the robot's heading
+#: error (deg). Not much closer than the spot: the stance toes are 1.2 cm behind the ball there.
+SKILL_SPREAD = ((-0.01, 0.08), (-0.05, 0.05), (-10.0, 10.0))
 SKILL_TRIALS, SKILL_TRIALS_QUICK = 6, 1
 SKILL_LIMIT_S = 25.0
 SKILL_TARGET_AHEAD_M = 10.0
@@ -158,7 +160,7 @@ def skill_trials(count: int, seed: int, library: MotionLibrary, tick: Callable[[
     rng = np.random.default_rng([seed, 7])
     trials = []
     for i in range(count):
-        error = _uniform(rng, SKILL_SPREAD)
+        error = tuple(float(rng.uniform(low, high)) for low, high in SKILL_SPREAD)
         strong = i % 2 == 1
         trial = skill_trial(error, strong, seed + i, library)
         trials.append({"strong": strong, "placement": [round(v, 3) for v in error], **trial})
