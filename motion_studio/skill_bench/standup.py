@@ -148,6 +148,7 @@ def _stood_scenario(seed: int, rng: random.Random | None = None, library: Motion
         skill = PlayMotion("prepose")
     scenario = Scenario(skill, seed=seed, controller=MotionController(library, load_dynamic_params(), 0))
     scenario.run(STANCE_CYCLES)
+    scenario.set_skill(None)  # after its recovery the robot holds its stance (not the pre-fall pose again)
     return scenario
 
 
