@@ -36,8 +36,8 @@ from motions.model import JointTarget, Motion
 
 SIDES = ("back", "front")
 #: Trials per side (and pushed trials) in a full / quick run.
-TRIALS, TRIALS_QUICK = 20, 2
-PUSHED_TRIALS, PUSHED_TRIALS_QUICK = 20, 2
+TRIALS, TRIALS_QUICK = 20, 1
+PUSHED_TRIALS, PUSHED_TRIALS_QUICK = 20, 1
 #: Largest nudge after the lay-down: torso speed [m/s] and spin [rad/s]; largest twist about the long axis [deg].
 PUSH_M_S = 0.3
 SPIN_RAD_S = 1.0
@@ -66,6 +66,8 @@ WALK_CYCLES = 60
 #: Torso height samples kept per trial for the plot (every TRACE_EVERY cycles).
 TRACE_EVERY = 2
 TARGETS = {"success_rate": 0.95, "time_s": TARGET_S}
+#: The server's self-collision tolerance (REFERENCE §4.5) [m].
+SELF_COLLISION_M = 0.04
 
 
 @dataclass
@@ -87,6 +89,9 @@ class Trial:
     """A pushed robot actually fell (laid-down robots always count as fallen)."""
     torso_z_m: list[float] = field(default_factory=list)
     """Torso height every TRACE_EVERY cycles from the start of the clock [m]."""
+    self_collisions: int = 0
+    """Cycles (checked every other one) in which the server's self-collision rule would have fired (REFERENCE
+    §4.5: it freezes the joints of both boxes for 1 s in a match; our scenarios run without that rule)."""
 
     @property
     def success(self) -> bool:
@@ -108,8 +113,12 @@ def _clock(scenario: Scenario, trial: Trial) -> Trial:
     hold = round(HOLD_S / CYCLE_S)
     limit = round(LIMIT_S / CYCLE_S)
     run_start: int | None = None
+    from sim.rules.self_collision import colliding_pairs
+
     for cycle in range(limit + hold):
         truth = scenario.run(1)[0]
+        if cycle % 2 == 0 and colliding_pairs(0, scenario.engine.robot_body_poses()[0][3], SELF_COLLISION_M):
+            trial.self_collisions += 1
         if cycle % TRACE_EVERY == 0 and cycle <= limit:
             trial.torso_z_m.append(round(truth.torso_m[2], 3))
         if standing(truth) and _both_feet_touch(scenario):
@@ -216,6 +225,9 @@ def summarise(trials: list[Trial]) -> dict:
         "time_max_s": max(times) if times else None,
         "attempts_mean": round(sum(t.attempts for t in counted) / len(counted), 2) if counted else None,
         "wrong_side": sum(1 for t in counted if t.kind in SIDES and t.sides and t.sides[0] != t.kind),
+        "first_attempt_success_rate": round(sum(t.success and t.attempts <= 1 for t in counted) / len(counted), 3)
+        if counted else None,
+        "trials_with_self_collision": sum(1 for t in counted if t.self_collisions),
     }
 
 

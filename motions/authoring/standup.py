@@ -64,6 +64,8 @@ TORSO_HALF_DEPTH_M = 0.05  # torso box 0.10 deep (REFERENCE §2.1)
 SOLE_HALF_THICKNESS_M = 0.01  # foot box 0.02 thick; the sole site is the box centre
 #: A ground keyframe whose soles can lie within this of flat counts as standing on its feet [deg].
 FLAT_TOLERANCE_DEG = 5.0
+#: Ground keyframes with the knees bent more than this are checked as squats on flat feet [deg].
+SQUAT_KNEE_DEG = 45.0
 #: Bodies that must stay off the ground when the robot squats on its feet.
 CLEARANCE_BODIES = ("torso", "lthigh", "rthigh", "lshank", "rshank")
 
@@ -400,7 +402,7 @@ def key_poses(params: StandUpParams, side: str, stance: GaitParams, solver: Sagi
         angles = ground.angles_rad()
         depths = solver.prop_depths_m(angles, side)
         note = "reach below the torso face: " + ", ".join(f"{group} {depth:+.3f} m" for group, depth in depths.items())
-        squat = solver.on_flat_feet(angles)
+        squat = solver.on_flat_feet(angles) if ground.knee_deg < -SQUAT_KNEE_DEG else None
         if squat is not None:
             lean, com_forward, clearance = squat
             note += (f"; on flat feet at a {lean:.0f} deg lean the CoM is {com_forward * 1000:+.0f} mm ahead of the "

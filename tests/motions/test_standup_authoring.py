@@ -77,6 +77,15 @@ def test_ground_phases_of_the_front_standup_push_up_with_the_arms():
     assert max(p.prop_depths_m.get("hands", 0.0) for p in poses) > 0.05
 
 
+def test_each_standup_passes_through_a_squat_on_flat_feet():
+    """The designed key pose of both: a squat with the knees apart (frog) whose CoM lies over the flat soles
+    with the body off the ground, checked with forward kinematics."""
+    params = load_standup_params()
+    for name, side in STANDUPS.items():
+        squats = [p.squat for p in key_poses(params[name], side, stance_params()) if p.squat is not None]
+        assert any(abs(com) <= 0.05 and clearance > 0.01 for _, com, clearance in squats), name
+
+
 def test_standups_are_left_right_symmetric(standups):
     for motion in standups.values():
         mirrored = motion.mirrored()
