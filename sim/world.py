@@ -313,6 +313,10 @@ class World:
         self.velocity_samples = np.array([r.velocity_sample for r in self.by_key.values()]).reshape(-1, 3)
         self.accelerations = np.array([r.acc_m_s2 for r in self.by_key.values()]).reshape(-1, 3)
         self.head_bodies = np.array([r.head_body for r in self.by_key.values()], dtype=np.intp)
+        # Per-cycle constants of the blow-up guard and a live view of MuJoCo's warning counters (of this data).
+        motors = self.motors
+        self._blow_up_bounds = (motors.min_rad - _BLOW_UP_PAST_STOP_RAD, motors.max_rad + _BLOW_UP_PAST_STOP_RAD)
+        self._warning_counts = self.data.warning.number
 
     def _index_perceptor_rows(self) -> None:
         """Gather indices of `perceptor_rows` (after every recompile): one row per robot into the values
@@ -411,11 +415,12 @@ class World:
         """One cycle of physics (``substeps`` MuJoCo steps), then contact bookkeeping."""
         m, d, motors = self.model, self.data, self.motors
         cycle_start = _save_state(d)
-        for _ in range(self.params.substeps):
+        for substep in range(self.params.substeps):
             ball_velocity = d.qvel[self.ball_dof:self.ball_dof + 3].copy()
             motors.predict(m, d)
             passes = self.params.motor_active_set_passes + motors.extra_passes if motors.target.size else 1
-            saved = _save_state(d) if passes > 1 else None
+            # The first substep starts from the cycle's start (predict writes no saved field): one copy serves.
+            saved = (cycle_start if substep == 0 else _save_state(d)) if passes > 1 else None
             for attempt in range(passes):
                 started = time.perf_counter()
                 mujoco.mj_step(m, d)
@@ -425,7 +430,8 @@ class World:
                     break
                 motors.re_solves += 1
                 _restore_state(d, saved)
-            if any(d.warning[w].number for w in _RESETTING_WARNINGS):
+            counts = self._warning_counts   # reading the view costs a tenth of d.warning[w].number
+            if counts[_RESETTING_WARNINGS[0]] or counts[_RESETTING_WARNINGS[1]] or counts[_RESETTING_WARNINGS[2]]:
                 self._recover_from_divergence(cycle_start)
             contacts = self._contact_table()
             self._ball_rebound(ball_velocity, contacts)
@@ -449,9 +455,10 @@ class World:
             return
         d = self.data
         angle = d.qpos[motors.qadr]
-        bad = (angle < motors.min_rad - _BLOW_UP_PAST_STOP_RAD) | (angle > motors.max_rad + _BLOW_UP_PAST_STOP_RAD)
+        low, high = self._blow_up_bounds
+        bad = (angle < low) | (angle > high)
         bad |= np.abs(d.qvel[motors.dof]) > _BLOW_UP_SPEED_RAD_S
-        if not bad.any():
+        if not np.count_nonzero(bad):
             return
         dofs = set(motors.dof[bad].tolist())
         worst = int(np.flatnonzero(bad)[0])
