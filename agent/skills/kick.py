@@ -57,7 +57,7 @@ class KickConfig:
 
     heading_tol_deg: float = 6.0
     """Aim error corrected with a turn motion when larger [deg]."""
-    forward_tol_m: float = 0.012
+    forward_tol_m: float = 0.01
     """Ball along the kick line off its spot: kick when within [m]."""
     lateral_tol_m: float = 0.015
     """Ball across the kick line off its spot: kick when within [m]."""
