@@ -19,7 +19,7 @@ import numpy as np
 
 from kinematics.fk import torso_rotation
 from kinematics.ik import PoseTarget, WholeBodyIK
-from motions.model import JointTarget
+from motions.model import JointTarget, Motion
 
 #: Parameter files of the generators.
 PARAMS_DIR = Path(__file__).resolve().parents[1] / "params"
@@ -142,3 +142,21 @@ def header(generator: str, params_path: Path | None, section: str | None, params
              f" {values} ".replace("--", "- -"),
              " Do not edit by hand: change the parameters and regenerate. ")
     return tuple(line for line in lines if line.strip())
+
+
+def write_xml_motions(motions_by_name: Mapping[str, Motion], out_dir: Path) -> list[Path]:
+    """Validate and save each motion as ``out_dir/<name>.xml`` (XML phase format); returns the paths.
+
+    Why validate first: a generator must never ship a file the agent's loader would refuse.
+    """
+    from motions.io import save
+
+    out_dir.mkdir(parents=True, exist_ok=True)
+    written = []
+    for name, motion in motions_by_name.items():
+        motion.validate()
+        target = out_dir / f"{name}.xml"
+        save(motion, target)
+        written.append(target)
+    return written
+

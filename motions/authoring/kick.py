@@ -41,10 +41,9 @@ import numpy as np
 from kinematics.errors import IKError
 from kinematics.fk import torso_rotation
 from kinematics.ik import PoseTarget
-from motions.authoring.common import ARMS, FILES_DIR, LEGS, PARAMS_DIR, FootPose, KeyframeSolver, header, targets_deg
+from motions.authoring.common import ARMS, FILES_DIR, LEGS, PARAMS_DIR, FootPose, KeyframeSolver, header, targets_deg, write_xml_motions
 from motions.authoring.gait import STANCE_FLAG, GaitParams, stance_pose
 from motions.authoring.gait_params import GAIT_PARAMS_PATH, load_gait_params
-from motions.io import save
 from motions.model import XML, Keyframe, Motion
 
 PARAMS_PATH = PARAMS_DIR / "kick.toml"
@@ -447,14 +446,7 @@ def build_all(path: Path = PARAMS_PATH, gait_path: Path = GAIT_PARAMS_PATH,
 
 def write_all(out_dir: Path = FILES_DIR, path: Path = PARAMS_PATH, gait_path: Path = GAIT_PARAMS_PATH) -> list[Path]:
     """Generate and write every kick file; returns the paths written."""
-    out_dir.mkdir(parents=True, exist_ok=True)
-    written = []
-    for name, motion in build_all(path, gait_path).items():
-        motion.validate()
-        target = out_dir / f"{name}.xml"
-        save(motion, target)
-        written.append(target)
-    return written
+    return write_xml_motions(build_all(path, gait_path), out_dir)
 
 
 def main(argv: list[str] | None = None) -> None:

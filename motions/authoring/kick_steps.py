@@ -23,11 +23,10 @@ import argparse
 from dataclasses import dataclass, replace
 from pathlib import Path
 
-from motions.authoring.common import FILES_DIR, PARAMS_DIR, FootPose, KeyframeSolver, header, load_params
+from motions.authoring.common import FILES_DIR, PARAMS_DIR, FootPose, KeyframeSolver, header, load_params, write_xml_motions
 from motions.authoring.gait import STANCE_FLAG, GaitParams, stance_pose
 from motions.authoring.gait_params import GAIT_PARAMS_PATH
 from motions.authoring.kick import Pose, PoseSolver, _phase, stance_params
-from motions.io import save
 from motions.model import XML, Motion
 
 PARAMS_PATH = PARAMS_DIR / "kick_steps.toml"
@@ -132,14 +131,7 @@ def build_all(path: Path = PARAMS_PATH, gait_path: Path = GAIT_PARAMS_PATH,
 
 def write_all(out_dir: Path = FILES_DIR, path: Path = PARAMS_PATH, gait_path: Path = GAIT_PARAMS_PATH) -> list[Path]:
     """Generate, validate and write the kick steps; returns the paths written."""
-    out_dir.mkdir(parents=True, exist_ok=True)
-    written = []
-    for name, motion in build_all(path, gait_path).items():
-        motion.validate()
-        target = out_dir / f"{name}.xml"
-        save(motion, target)
-        written.append(target)
-    return written
+    return write_xml_motions(build_all(path, gait_path), out_dir)
 
 
 def main(argv: list[str] | None = None) -> None:
