@@ -13,6 +13,7 @@ Noise per reported point: d += N(0, 0.0965) · d / 100, θ += N(0, 0.1480°), φ
 from __future__ import annotations
 
 import math
+import threading
 from dataclasses import dataclass
 from functools import partial
 from typing import NamedTuple
@@ -141,9 +142,10 @@ def observe(cams_m: np.ndarray, rotations: np.ndarray, calibration_m: np.ndarray
             reproducible); config: model switches.
     """
     count = cams_m.shape[0]
-    # rows: landmarks, ball, players' parts, then the field-line end points (static, cached)
-    points = np.concatenate((LANDMARK_POSITIONS_M, ball_m[None, :], part_points_m)
-                            + ((_LINE_POINTS,) if config.lines else ()))
+    # rows: landmarks, ball, players' parts, then the field-line end points (static, kept in a buffer)
+    points = _point_table(part_points_m.shape[0], config.lines)
+    points[_FIXED_COUNT - 1] = ball_m
+    points[_FIXED_COUNT:_FIXED_COUNT + part_points_m.shape[0]] = part_points_m
     rel = (points - cams_m[:, None, :]) @ rotations                              # R_headᵀ (p - c), (K, P, 3)
     if config.calibration:
         rel += calibration_m[:, None, :]
@@ -174,9 +176,29 @@ def observe(cams_m: np.ndarray, rotations: np.ndarray, calibration_m: np.ndarray
     chosen = np.concatenate((objects[seen], table[object_rows:]))
     if config.noise:
         chosen = _noisy(chosen, rng)
-    bounds = np.arange(count + 1)
-    return Sighting(seen_k, seen_p, chosen[:seen.size], line_k, chosen[seen.size:],
-                    np.searchsorted(seen_k, bounds), np.searchsorted(line_k, bounds))
+    if count == 1:   # one observer owns every row
+        object_rows, line_rows = np.array((0, seen.size)), np.array((0, line_k.size))
+    else:
+        bounds = np.arange(count + 1)
+        object_rows, line_rows = np.searchsorted(seen_k, bounds), np.searchsorted(line_k, bounds)
+    return Sighting(seen_k, seen_p, chosen[:seen.size], line_k, chosen[seen.size:], object_rows, line_rows)
+
+
+_POINT_TABLES = threading.local()   # per thread: engines may run in several (the TCP server has its own)
+
+
+def _point_table(part_count: int, lines: bool) -> np.ndarray:
+    """The point table of `observe` for ``part_count`` player parts: landmarks and (with ``lines``) the field-line
+    ends filled in; the ball and part rows are the caller's to write. One buffer per shape and thread, reused
+    (cheaper than concatenating the static rows every cycle)."""
+    tables = getattr(_POINT_TABLES, "tables", None)
+    if tables is None:
+        tables = _POINT_TABLES.tables = {}
+    table = tables.get((part_count, lines))
+    if table is None:
+        table = tables[(part_count, lines)] = np.concatenate(
+            (LANDMARK_POSITIONS_M, np.zeros((1 + part_count, 3))) + ((_LINE_POINTS,) if lines else ()))
+    return table
 
 
 def see(observers: list[Observer], ball_m: np.ndarray, players: list[PlayerParts],
