@@ -342,6 +342,12 @@ class World:
         self._foot_gather = np.array([slots + [sensor_count] * (foot_width - len(slots)) for slots in feet],
                                      dtype=np.intp).reshape(count, foot_width)
         self._foot_bits = 1 << np.arange(foot_width)
+        self._foot_masks: dict[bytes, list[int]] = {}
+        # The gather's source, [gyro | accelerations | angles | 6 FRP values per sensor], and views of its parts.
+        source = self._perceptor_source = np.zeros(6 * count + angle_count + 6 * sensor_count)
+        frp = source[6 * count + angle_count:].reshape(sensor_count, 6)
+        self._source_parts = (source[:3 * count].reshape(count, 3), source[3 * count:6 * count].reshape(count, 3),
+                              source[6 * count:6 * count + angle_count], frp[:, :3], frp[:, 3:])
 
     def _apply_collision_bits(self, robot: Robot) -> None:
         m = self.model
@@ -638,14 +644,24 @@ class World:
             `accelerometer_m_s2`), hinge angles [deg] in wire order, then per foot sensor (spec order) its
             contact point x, y, z [m] and force x, y, z [N] in foot axes, stale for a foot without contact
             (the layout of agent.protocol.sense_template.SenseTemplate); rows may hold padding after their
-            values. feet[r]: bit i set when the robot's i-th foot sensor has contact.
+            values. feet[r]: bit i set when the robot's i-th foot sensor has contact (a shared list: read only).
         """
         d = self.data
-        source = np.concatenate((np.degrees(d.qvel[self._root_ang]).ravel(), self.accelerations.ravel(),
-                                 np.degrees(d.qpos[self.wire_qadr]),
-                                 np.concatenate((self.frp_point, self.frp_force), axis=1).ravel()))
-        contact = np.append(self.frp_active, False)
-        return source[self._perceptor_gather], (contact[self._foot_gather] @ self._foot_bits).tolist()
+        gyro, acc, angles, point, force = self._source_parts   # views of one buffer, written in place
+        np.degrees(d.qvel[self._root_ang], out=gyro)
+        acc[...] = self.accelerations
+        np.degrees(d.qpos[self.wire_qadr], out=angles)
+        point[...] = self.frp_point
+        force[...] = self.frp_force
+        # The foot bits change only when a foot lands or lifts: kept per contact pattern (read-only lists).
+        pattern = self.frp_active.tobytes()
+        feet = self._foot_masks.get(pattern)
+        if feet is None:
+            if len(self._foot_masks) > 64:
+                self._foot_masks.clear()
+            contact = np.append(self.frp_active, False)
+            feet = self._foot_masks[pattern] = (contact[self._foot_gather] @ self._foot_bits).tolist()
+        return self._perceptor_source[self._perceptor_gather], feet
 
     def joint_angles_rad(self, key: int) -> np.ndarray:
         """Hinge angles of one robot in spec order [rad]."""
@@ -692,10 +708,10 @@ class World:
     def set_ball(self, position_m: tuple[float, float, float],
                  velocity_m_s: tuple[float, float, float] = (0.0, 0.0, 0.0)) -> None:
         a, v = self.ball_qadr, self.ball_dof
-        self.data.qpos[a:a + 3] = position_m
-        self.data.qpos[a + 3:a + 7] = (1.0, 0.0, 0.0, 0.0)
-        self.data.qvel[v:v + 3] = velocity_m_s
-        self.data.qvel[v + 3:v + 6] = 0.0
+        x, y, z = position_m
+        vx, vy, vz = velocity_m_s
+        self.data.qpos[a:a + 7] = (x, y, z, 1.0, 0.0, 0.0, 0.0)
+        self.data.qvel[v:v + 6] = (vx, vy, vz, 0.0, 0.0, 0.0)
         self._poses_stale = True
 
     def robots(self) -> list[RobotState]:
