@@ -30,10 +30,6 @@ _NUM = r"([-.0-9]++)"
 _ATOM = r"([!-'*-~]++)"
 _GS = rf"\(GS (?:\(unum (-?\d+)\) \(team {_ATOM}\) )?\(sl (-?\d+)\) \(sr (-?\d+)\) \(t {_NUM}\) \(pm {_ATOM}\)\)"
 _HEAR = rf"\(hear {_ATOM} {_NUM} (self|[-.0-9]++) {_ATOM}\)"
-# The See predicate runs to the first ')' followed by the next predicate or the end: inside it a ')' is
-# always followed by ')' or ' ' in the server's spelling. Its content is then read and checked by the See
-# reader of the fast path, which must end exactly where this group ends.
-_SEE = r"(\(See.*?\))(?=\(|\Z)"
 _FRP_KEY = "(FRP"
 
 SeeReader = Callable[[str, bytes, int], "tuple[See, int] | None"]
@@ -49,7 +45,8 @@ class _Shape:
         joint_groups: list[int] = []
         self.frp: list[tuple[str, int]] = []
         self.hears: list[int] = []
-        self.time = self.game_state = self.see = -1
+        self.time = self.game_state = -1
+        see_at = -1   # the See predicate splits the pattern in two; the fast path's See reader reads it
         self.gyro: tuple[str, int] | None = None
         self.acc: tuple[str, int] | None = None
         joints, feet = iter(sense.joints), iter(sense.frp)
@@ -88,12 +85,13 @@ class _Shape:
                 self.hears.append(group)
                 group += 4
             elif kind == "See":
-                pieces.append(_SEE)
-                self.see = group
-                group += 1
+                see_at = len(pieces)
             else:
                 raise ValueError(f"no shape for {kind!r}")
-        self.pattern = re.compile("".join(pieces))
+        if see_at < 0:
+            self.pattern, self.tail = re.compile("".join(pieces)), None
+        else:
+            self.pattern, self.tail = re.compile("".join(pieces[:see_at])), re.compile("".join(pieces[see_at:]))
         self.order = sense.order
         self.frp_count = len(self.frp)
         self.joint_names = tuple(joint_names)
@@ -109,16 +107,24 @@ class _Shape:
         Raises:
             ValueError: a number ``float`` refuses (the caller's general path then locates it).
         """
-        m = self.pattern.fullmatch(text)
-        if m is None:
-            return None
-        g = m.groups()
         see = None
-        if self.see >= 0:
-            found = see_reader(text, raw, m.start(self.see + 1))
-            if found is None or found[1] != m.end(self.see + 1):
+        if self.tail is None:
+            m = self.pattern.fullmatch(text)
+            if m is None:
                 return None
-            see = found[0]
+            g = m.groups()
+        else:   # the predicates before the See, the See, then the rest
+            m = self.pattern.match(text)
+            if m is None:
+                return None
+            found = see_reader(text, raw, m.end())
+            if found is None:
+                return None
+            see, end = found
+            rest = self.tail.fullmatch(text, end)
+            if rest is None:
+                return None
+            g = m.groups() + rest.groups()
         i = self.game_state
         game_state = None
         if i >= 0:
