@@ -303,14 +303,26 @@ class BallApproach:
 
     forward_min_m: float = 0.08
     """Closest the ball may be in front (torso centre to ball centre)."""
-    forward_max_m: float = 0.28
-    """Farthest the ball may be in front and still count as close."""
+    forward_max_m: float = 0.38
+    """Farthest the ball may be in front and still count as close [m] (a forward walk, however short the
+    request, moves about 0.35 m with its start and stop ramps: a nearer limit made the correction walk
+    through the ball)."""
     lateral_m: float = 0.1
     """Largest sideways offset of the ball."""
     standoff_m: float = 0.18
     """Point walked to: this far short of the ball along the line from the robot."""
     max_age_s: float = 4.0
     """A ball sighting older than this is not trusted; the robot stands and looks around."""
+    side_clear_m: float = 0.16
+    """A side step only with the ball at least this far in front [m] (the toes reach ~0.09 m ahead of the
+    torso, the ball's radius is 0.042 m): nearer, a side step pushed the ball along beside the feet for
+    seconds and then stepped on it (seen in matches); the robot steps back first."""
+    back_to_m: float = 0.24
+    """A backward correction aims to put the ball this far in front [m]."""
+    min_side_m: float = 0.25
+    """Lateral errors below this are turned out, not side-stepped [m]: a side walk, however short the
+    request, plays its start and stop ramps and moves about 0.25 m (measured), so smaller corrections
+    overshot and swung from side to side."""
 
 
 class WalkToBall(Skill):
@@ -361,8 +373,11 @@ class WalkToBall(Skill):
         ball = self.ball_ego(world)
         if ball is None:
             self._search_cycles += 1
-            sweep = 60.0 * math.sin(self._search_cycles * CYCLE_S * 1.5)
-            return steer.request(None, head_deg=(sweep, -20.0))
+            phase = self._search_cycles * CYCLE_S * 1.5
+            sweep = 60.0 * math.sin(phase)
+            # Every other sweep looks down at the feet too (a ball right in front is below a -20° view).
+            pitch = -20.0 if int(phase / math.pi) % 2 == 0 else -45.0
+            return steer.request(None, head_deg=(sweep, pitch))
         self._search_cycles = 0
         head = self.head_for(world, ball)
         under_way = steer.turn_step(motion)
@@ -391,19 +406,29 @@ class WalkToBall(Skill):
                 bearing_deg = escape
             request = steer.heading(motion, bearing_deg)
             return MotionRequest(request.motion, request.lean, request.turn_deg, request.gain, head)
-        # Close: line up with short walks along the larger error (forward only if it does not overshoot).
+        # Close: line up with short walks along the larger error (forward only if it does not overshoot; a
+        # side step only with the ball clear of the toes, else a step back first).
         if motion.motion_name in WALKS and not motion.stopping:
             name = motion.motion_name
-            remaining = {FORWARD: to_forward, BACKWARD: -to_forward, LEFT: left, RIGHT: -left}[name]
-            limit = a.lateral_m / 2 if name in (LEFT, RIGHT) else stop_distance_m(motion, name)
-            if remaining > limit:
+            if name in (LEFT, RIGHT) and forward < a.side_clear_m - 0.03:
+                return steer.request(None, head_deg=head)  # the ball came to the feet: stop before stepping on it
+            remaining = {FORWARD: to_forward, BACKWARD: a.back_to_m - forward, LEFT: left, RIGHT: -left}[name]
+            # Walk on while the error exceeds what the walk still covers once stopped (a side walk's stop
+            # alone covers about the lateral tolerance, so stopping at a fixed small error overshot and the
+            # corrections swung from side to side).
+            if remaining > stop_distance_m(motion, name):
                 return steer.request(name, head_deg=head, lean=steer.smooth_lean(motion, _lean(bearing_deg, self.config))
                                      if name == FORWARD else 0.0)
             return steer.request(None, head_deg=head)
         if not motion.idle and motion.motion_name in WALKS:
             return steer.request(None, head_deg=head)
         if abs(left) > a.lateral_m and abs(left) >= abs(to_forward) / 2:
-            name = LEFT if left > 0 else RIGHT
+            if forward < a.side_clear_m:
+                name = BACKWARD  # room first: a side step or a turn would kick the ball beside the feet
+            elif abs(left) < a.min_side_m and steer.can_turn(motion):
+                return steer.turn(motion, bearing_deg)
+            else:
+                name = LEFT if left > 0 else RIGHT
         elif forward < a.forward_min_m:
             name = BACKWARD
         elif abs(bearing_deg) > 25 and steer.can_turn(motion):

@@ -84,3 +84,19 @@ def test_a_robot_walking_to_a_point_passes_a_robot_standing_in_its_way_without_t
             break
     assert not truth.fallen and skill.done and skill.reached
     assert touching == 0 and closest > 0.4
+
+
+@pytest.mark.parametrize("ball_ego_m", [(0.12, -0.16), (0.1, 0.2)])
+def test_walk_to_ball_with_the_ball_beside_the_feet_lines_up_without_pushing_it_away(ball_ego_m):
+    # In matches a robot side-stepped with the ball beside its foot for 3 s, pushing it along, then stepped
+    # on it and fell; it must step back first and line up.
+    start = (-4.0, 0.0)
+    ball = (start[0] + ball_ego_m[0], start[1] + ball_ego_m[1])
+    scenario = Scenario(PlayMotion("stand", head_deg=(0.0, -45.0)), position_m=start, ball_m=ball,
+                        recover_falls=False)
+    scenario.run(75)  # stand looking down: the ball is seen where it lies
+    walk = WalkToBall()
+    scenario.set_skill(walk)
+    truths = scenario.run(12 * CYCLES_PER_S, stop=lambda t: walk.done or t.fallen)
+    assert not any(t.fallen for t in truths) and walk.done
+    assert math.dist(truths[-1].ball_m[:2], ball) < 0.35
