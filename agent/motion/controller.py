@@ -183,6 +183,11 @@ class MotionController:
     def idle(self) -> bool:
         return self._playback is None
 
+    @property
+    def last_request(self) -> MotionRequest:
+        """The request posted last (what the motion plays with now, e.g. its walk lean)."""
+        return self._request
+
     def request(self, request: MotionRequest | str | None) -> None:
         """Post this cycle's request (a name is ``MotionRequest(name)``); the latest one before ``update``
         counts.

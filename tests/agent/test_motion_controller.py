@@ -249,3 +249,12 @@ def test_unknown_motion_names_the_known_ones():
     controller = controller_for(xml_motion("walk", [phase("a", 20, {})]))
     with pytest.raises(KeyError, match="walk"):
         controller.request("kick")
+
+
+def test_last_request_is_the_request_posted_last():
+    from agent.motion import MotionController, MotionLibrary, MotionRequest
+
+    controller = MotionController(MotionLibrary())
+    assert controller.last_request == MotionRequest(None)
+    controller.request(MotionRequest(None, lean=0.5))
+    assert controller.last_request.lean == 0.5
