@@ -58,6 +58,10 @@ class WalkConfig:
     starts from 0 whenever the walk is not in its cycle phases."""
     settle_after_turn_s: float = 0.3
     """Standing still after a turn motion before walking on [s]."""
+    lean_release: float = 0.15
+    """A walk leaning more than this is straightened at ``lean_rate_per_s`` before it is stopped or left
+    for another motion: dropped at once (a full lean to 0 mid-stride, then the stop), it toppled a
+    type-1 robot in a match."""
     avoid: AvoidConfig | None = AvoidConfig()
     """Obstacle avoidance while walking toward a far target (``agent.skills.avoid``); None = walk straight."""
 
@@ -108,8 +112,8 @@ class _Steer:
     def __init__(self, config: WalkConfig) -> None:
         self.config = config
         self.turning: str | None = None
-        self.lean = 0.0
-        """The lean request sent last (slew-rate limited)."""
+        self.lean: float | None = None
+        """The lean request sent last (slew-rate limited); None until this skill first steers a walk."""
         self._settle_cycles = 0
         self._stands_before = 0
         self.just_turned = False
@@ -149,14 +153,27 @@ class _Steer:
         return self.request(self.turning, turn_deg=self._turn_deg)
 
     def smooth_lean(self, motion: MotionController, wanted: float) -> float:
-        """``wanted`` lean, approached at ``lean_rate_per_s`` from 0 once the walk cycles."""
+        """``wanted`` lean, approached at ``lean_rate_per_s`` once the walk cycles, from the lean the walk
+        plays with now (another skill may have started it)."""
         cycling = motion.motion_name == FORWARD and (motion.phase_name or "").startswith("cycle")
         if not cycling:
             self.lean = 0.0
             return 0.0
+        if self.lean is None:
+            self.lean = motion.last_request.lean if motion.last_request.motion == FORWARD else 0.0
         step = self.config.lean_rate_per_s * CYCLE_S
         self.lean += max(-step, min(step, wanted - self.lean))
         return self.lean
+
+    def guard(self, motion: MotionController, request: MotionRequest) -> MotionRequest:
+        """``request``, unless it leaves a forward walk that still leans more than ``lean_release``: then
+        the walk goes on straightening first (the turn or stop follows a few cycles later)."""
+        leaving = request.motion != FORWARD and motion.motion_name == FORWARD and not motion.stopping
+        if leaving:
+            lean = self.smooth_lean(motion, 0.0)
+            if abs(lean) > self.config.lean_release:
+                return MotionRequest(FORWARD, lean=lean, head_deg=request.head_deg)
+        return request
 
     def can_turn(self, motion: MotionController) -> bool:
         return TURN_LEFT in motion.library and TURN_RIGHT in motion.library
@@ -198,6 +215,9 @@ class WalkTo(Skill):
         self._correction: str | None = None
 
     def step(self, world: WorldModel, motion: MotionController) -> MotionRequest:
+        return self._steer.guard(motion, self._step(world, motion))
+
+    def _step(self, world: WorldModel, motion: MotionController) -> MotionRequest:
         report_walk_odometry(world, motion)
         steer = self._steer
         pose = world.pose
@@ -368,6 +388,9 @@ class WalkToBall(Skill):
         return yaw, -max(0.0, min(45.0, depression - 25.0))
 
     def step(self, world: WorldModel, motion: MotionController) -> MotionRequest:
+        return self._steer.guard(motion, self._step(world, motion))
+
+    def _step(self, world: WorldModel, motion: MotionController) -> MotionRequest:
         report_walk_odometry(world, motion)
         steer = self._steer
         ball = self.ball_ego(world)

@@ -1,0 +1,49 @@
+"""Walk-skill steering, unit level (no simulator): the shipped forward walk played by the motion controller on
+an ideal plant; a skill that leaves a leaning walk straightens it first (a full lean dropped to 0 mid-stride
+and then stopped toppled a robot in a match)."""
+
+from __future__ import annotations
+
+import math
+
+from agent.motion import MotionController, MotionRequest, default_library, load_dynamic_params
+from agent.skills.walk import FORWARD, WalkConfig, _Steer
+
+
+def _controller_in_the_cycle(lean: float) -> tuple[MotionController, dict[str, float]]:
+    controller = MotionController(default_library(0), load_dynamic_params())
+    angles = {j.perceptor: 0.0 for j in controller.joints}
+    for _ in range(300):
+        controller.request(MotionRequest(FORWARD, lean=lean))
+        for effector, omega in controller.update(angles).items():
+            wire = effector.replace("e", "j", 1)
+            angles[wire] += math.degrees(omega) * 0.02
+        if (controller.phase_name or "").startswith("cycle"):
+            break
+    assert (controller.phase_name or "").startswith("cycle")
+    return controller, angles
+
+
+def test_leaving_a_leaning_walk_straightens_it_first_at_the_lean_rate():
+    config = WalkConfig()
+    controller, angles = _controller_in_the_cycle(lean=-1.0)
+    steer = _Steer(config)
+    leans = []
+    for _ in range(60):
+        request = steer.guard(controller, MotionRequest("turn_right", turn_deg=40.0))
+        controller.request(request)
+        for effector, omega in controller.update(angles).items():
+            angles[effector.replace("e", "j", 1)] += math.degrees(omega) * 0.02
+        if request.motion != FORWARD:
+            break
+        leans.append(request.lean)
+    assert leans[0] == -1.0 + config.lean_rate_per_s * 0.02  # continued from the walk's own lean, not from 0
+    assert all(b > a for a, b in zip(leans, leans[1:]))  # straightened step by step
+    assert abs(leans[-1]) <= config.lean_release + config.lean_rate_per_s * 0.02
+    assert request.motion == "turn_right"  # then the turn goes through
+
+
+def test_a_straight_walk_is_left_at_once():
+    controller, _ = _controller_in_the_cycle(lean=0.0)
+    request = _Steer(WalkConfig()).guard(controller, MotionRequest(None))
+    assert request.motion is None
