@@ -141,6 +141,8 @@ class Start:
     push_m_s: tuple[float, float, float]
     spin_rad_s: tuple[float, float, float]
     noise_seed: int | None = None
+    twist_deg: float = 0.0
+    """Turn about the long axis at the lay-down (``Scenario.lay_down``)."""
 
 
 #: Parameter noise of a noisy start: durations scaled by 1 +- DURATION_NOISE, ground-phase angles moved by up
@@ -173,17 +175,19 @@ def noisy(params: StandUpParams, seed: int) -> StandUpParams:
 
 
 def default_starts(count: int = 4, seed: int = 1, noise: bool = False) -> tuple[Start, ...]:
-    """The first start from the walk stance, then seeded poses near it, yaws, pushes up to 0.3 m/s and spins
-    up to 0.6 rad/s (the lying body comes to rest on its flat torso, so the pose matters most)."""
+    """The first start from the walk stance, then starts drawn like the benchmark's lying trials
+    (``motion_studio.skill_bench.standup``: seeded poses near the stance, yaw, twist, push, spin); the lying
+    body comes to rest on its flat torso, so the pose matters most."""
+    from motion_studio.skill_bench.standup import PUSH_M_S, SPIN_RAD_S, TWIST_DEG, random_vector
+
     rng = random.Random(f"tune_standup/{seed}")
     starts = [Start(None, 0.0, (0.0, 0.0, 0.0), (0.0, 0.0, 0.0))]
     for index in range(count - 1):
-        angle = rng.uniform(-math.pi, math.pi)
-        push = rng.uniform(0.0, 0.3)
-        spin = tuple(round(rng.uniform(-0.6, 0.6), 3) for _ in range(3))
-        starts.append(Start(seed * 100 + index, round(rng.uniform(-180.0, 180.0), 1),
-                            (round(push * math.cos(angle), 3), round(push * math.sin(angle), 3), 0.0), spin,  # type: ignore[arg-type]
-                            seed * 100 + 50 + index if noise else None))
+        yaw = round(rng.uniform(-180.0, 180.0), 1)
+        twist = round(rng.uniform(-TWIST_DEG, TWIST_DEG), 1)
+        push = random_vector(rng, PUSH_M_S, horizontal=True)
+        spin = random_vector(rng, SPIN_RAD_S)
+        starts.append(Start(seed * 100 + index, yaw, push, spin, seed * 100 + 50 + index if noise else None, twist))
     return tuple(starts)
 
 
@@ -236,7 +240,7 @@ def rollout(motion: Motion, side: str, start: Start, seed: int = 0) -> Rollout:
     scenario = Scenario(PlayMotion(first), seed=seed, recover_falls=False,
                         controller=MotionController(library, load_dynamic_params(), 0))
     scenario.run(STANCE_CYCLES)
-    scenario.lay_down(side, start.yaw_deg)
+    scenario.lay_down(side, start.yaw_deg, start.twist_deg)
     scenario.push(start.push_m_s, start.spin_rad_s)
     scenario.run(SETTLE_CYCLES)
     scenario.set_skill(PlayMotion(motion.name))

@@ -165,8 +165,8 @@ def lying_trial(side: str, rng: random.Random, seed: int) -> Trial:
     """Lay the standing robot on ``side`` at a random yaw, nudge it, and clock its recovery."""
     yaw = rng.uniform(-180.0, 180.0)
     twist = rng.uniform(-TWIST_DEG, TWIST_DEG)
-    push = _random_vector(rng, PUSH_M_S, horizontal=True)
-    spin = _random_vector(rng, SPIN_RAD_S)
+    push = random_vector(rng, PUSH_M_S, horizontal=True)
+    spin = random_vector(rng, SPIN_RAD_S)
     trial = Trial(side, round(yaw, 1), push, spin)
     scenario = _stood_scenario(seed, rng)
     scenario.lay_down(side, yaw, twist)
@@ -194,7 +194,8 @@ def pushed_trial(walking: bool, rng: random.Random, seed: int) -> Trial:
     return _clock(scenario, trial)
 
 
-def _random_vector(rng: random.Random, size: float, horizontal: bool = False) -> tuple[float, float, float]:
+def random_vector(rng: random.Random, size: float, horizontal: bool = False) -> tuple[float, float, float]:
+    """A seeded vector of random direction (horizontal or in 3-D) and length up to ``size``."""
     angle = rng.uniform(-math.pi, math.pi)
     z = 0.0 if horizontal else rng.uniform(-1.0, 1.0)
     r = math.sqrt(max(0.0, 1.0 - z * z))
@@ -292,9 +293,12 @@ def plot(result: dict, out_dir: pathlib.Path) -> list[pathlib.Path]:
         if times:
             hist.hist(times, bins=bins, alpha=0.6, label=f"{kind} ({len(times)})")
     hist.axvline(TARGET_S, color="k", linestyle="--", linewidth=1, label=f"target {TARGET_S:g} s")
+    hist.set_xlim(0.0, LIMIT_S)
     hist.set_xlabel("time to stand [s]")
     hist.set_ylabel("trials")
-    hist.set_title("Time to stand")
+    rates = ", ".join(f"{kind} {result[kind]['success_rate']:.0%}" for kind in kinds
+                      if result.get(kind, {}).get("success_rate") is not None)
+    hist.set_title(f"Time to stand (within {TARGET_S:g} s: {rates})")
     hist.legend()
     colours = {"back": "tab:blue", "front": "tab:orange", "pushed": "tab:green"}
     for kind in kinds:
