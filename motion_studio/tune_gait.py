@@ -33,7 +33,7 @@ from agent.motion import MotionLibrary
 from kinematics.errors import IKError
 from motion_studio.cmaes import CMAES
 from motion_studio.walk_rollout import Push, WalkRun, run_walk
-from motions.authoring.gait import GaitParams, build_stance, build_walk, write_gait_files
+from motions.authoring.gait import GaitParams, build_walk, write_gait_files
 from motions.authoring.gait_params import (GAIT_PARAMS_PATH, dumps_gait_params, load_gait_params, provenance,
                                            read_common, read_header)
 

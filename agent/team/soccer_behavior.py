@@ -22,7 +22,8 @@ from agent.skills.base import PlayMotion, Skill
 from agent.skills.behavior import SkillBehavior
 from agent.skills.kick import KickToward
 from agent.skills.turn import TurnToFace
-from agent.skills.walk import STAND, WalkTo, WalkToBall
+from agent.skills.walk import STAND, WalkTo
+from agent.skills.walk_ball import WalkToBall
 from agent.team import roles
 from agent.world_model import WorldModel
 

@@ -11,7 +11,8 @@ import pytest
 
 from agent.motion import default_library
 from agent.skills.base import PlayMotion
-from agent.skills.walk import WalkDirection, WalkTo, WalkToBall
+from agent.skills.walk import WalkDirection, WalkTo
+from agent.skills.walk_ball import WalkToBall
 from motion_studio.scenarios import Scenario
 from motion_studio.walk_rollout import run_walk
 

@@ -11,7 +11,7 @@ import pytest
 from agent.motion import MotionController, MotionRequest
 from agent.skills.base import PlayMotion, Skill
 from agent.skills.turn import TurnToFace
-from agent.skills.walk import WalkToBall
+from agent.skills.walk_ball import WalkToBall
 from agent.world_model import WorldModel
 from motion_studio.scenarios import Scenario
 from motion_studio.walk_rollout import run_walk
