@@ -39,6 +39,8 @@ class Fall:
     robot_type: int
     cause: tuple[str, str | None, str | None]
     """(skill, motion, phase kind) when the tilt began."""
+    ball_m: float
+    """Ground distance torso - ball when the tilt began [m] (a robot stepping on the ball falls)."""
     contact: bool
     """Touching another robot in the 1.5 s before the fall."""
     transitions: list[tuple] = field(default_factory=list)
@@ -55,6 +57,8 @@ class Diagnosis:
     """Ball touch events (a robot starting to touch the ball) per team."""
     contacts: int
     """Robot-pair contact events (a pair starting to touch)."""
+    motions_played: dict[str, int]
+    """Motion name -> times a robot started it (to set the falls during a motion against its uses)."""
     score: tuple[int, int]
 
     @property
@@ -89,6 +93,8 @@ def diagnose(config: MatchConfig) -> Diagnosis:
     touching_ball: set = set()
     pairs: set = set()
     contacts = 0
+    played: collections.Counter[str] = collections.Counter()
+    playing: dict[int, str | None] = {}
     waited_s = 0.0
     while referee.play_mode != "GameOver" and referee.game_time_s < config.duration_s:
         host.run(1)
@@ -106,16 +112,21 @@ def diagnose(config: MatchConfig) -> Diagnosis:
         pairs = now_pairs
         in_contact = {robot for pair in now_pairs for robot in pair}
         states = {(r.team, r.unum): r for r in world.robots()}
+        ball = world.ball_position()
         for key, (agent, side, unum, robot_type) in agents.items():
             state = states.get((side, unum))
             if state is None:
                 continue
             behavior = agent.behavior
             motion = behavior.motion
+            if motion.motion_name != playing.get(key) and motion.motion_name is not None:
+                played[motion.motion_name] += 1
+            playing[key] = motion.motion_name
             skills = behavior.skills
             skill = "StandUp" if skills.recovering else type(skills.skill).__name__
             row = (round(engine.time_s, 2), behavior.role, skill, motion.motion_name, motion.phase_name,
-                   round(motion._request.lean, 2), round(state.torso_up_z, 2), (side, unum) in in_contact)
+                   round(motion._request.lean, 2), round(state.torso_up_z, 2), (side, unum) in in_contact,
+                   round(math.dist(state.torso_pos_m[:2], ball[:2]), 2))
             history[key].append(row)
             z = state.torso_pos_m[2]
             if not fallen.get(key) and (state.torso_up_z < FALL_UP_Z or z < FALL_TORSO_Z_M):
@@ -129,10 +140,10 @@ def diagnose(config: MatchConfig) -> Diagnosis:
                         transitions.append(r)
                         last = r[1:4] + (_phase_kind(r[4]),)
                 falls.append(Fall(engine.time_s, side, unum, robot_type, (tilt[2], tilt[3], _phase_kind(tilt[4])),
-                                  any(r[7] for r in rows[-75:]), transitions[-12:]))
+                                  tilt[8], any(r[7] for r in rows[-75:]), transitions[-12:]))
             elif fallen.get(key) and state.torso_up_z > UPRIGHT_UP_Z and z > UPRIGHT_TORSO_Z_M:
                 fallen[key] = False
-    return Diagnosis(len(agents), referee.game_time_s, falls, dict(touches), contacts,
+    return Diagnosis(len(agents), referee.game_time_s, falls, dict(touches), contacts, dict(played),
                      (referee.score_left, referee.score_right))
 
 
@@ -145,8 +156,8 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     result = diagnose(MatchConfig(players_per_team=args.players, duration_s=args.duration, seed=args.seed))
     for fall in result.falls:
-        print(f"fall t={fall.time_s:.2f} {fall.team} {fall.unum} (type {fall.robot_type}) during {fall.cause}"
-              + (" in contact" if fall.contact else ""))
+        print(f"fall t={fall.time_s:.2f} {fall.team} {fall.unum} (type {fall.robot_type}) during {fall.cause}, "
+              f"ball {fall.ball_m:.2f} m" + (" in contact" if fall.contact else ""))
         if args.verbose:
             for row in fall.transitions:
                 print("    ", row)
@@ -154,7 +165,9 @@ def main(argv: list[str] | None = None) -> int:
           f"{result.falls_per_robot_minute:.3f} per robot-minute; ball touches {result.touches}; robot contacts "
           f"{result.contacts}; score {result.score[0]}:{result.score[1]}")
     for (cause, contact), count in result.causes():
-        print(f"  {count} x {cause}" + (" in contact" if contact else ""))
+        print(f"  {count} x {cause}" + (" in contact" if contact else "")
+              + f" ({result.motions_played.get(cause[1] or '', 0)} starts of {cause[1]})")
+    print("motion starts:", dict(sorted(result.motions_played.items())))
     return 0
 
 
