@@ -105,7 +105,7 @@ def dimensions(params: StandUpParams, frozen: frozenset[str] = frozenset()) -> l
     """Every tuned parameter of a stand-up with its bounds; ``frozen`` names
     ground phases (or ``ready``) kept as they are."""
     dims = [Dimension(name, *bounds) for name, bounds in POSE_BOUNDS.items()
-            if not (name == "ready_ms" and "ready" in frozen)]
+            if not (name == "ready_ms" and ("ready" in frozen or params.ready_ms == 0))]
     for index, pose in enumerate(params.ground):
         if pose.name not in frozen:
             dims += [Dimension(f"ground.{index}.{name}", *bounds) for name, bounds in GROUND_BOUNDS.items()]
@@ -168,7 +168,8 @@ def noisy(params: StandUpParams, seed: int) -> StandUpParams:
                 value = getattr(pose, name) + rng.uniform(-ANGLE_NOISE_DEG, ANGLE_NOISE_DEG)
                 changes[name] = min(high, max(low, value))
         ground.append(replace(pose, **changes))
-    return replace(params, ground=tuple(ground), ready_ms=ms(params.ready_ms), crouch_ms=ms(params.crouch_ms),
+    return replace(params, ground=tuple(ground), ready_ms=ms(params.ready_ms) if params.ready_ms else 0,
+                   crouch_ms=ms(params.crouch_ms),
                    rise_ms=ms(params.rise_ms), stance_ms=ms(params.stance_ms),
                    crouch_pitch_deg=params.crouch_pitch_deg + rng.uniform(-ANGLE_NOISE_DEG, ANGLE_NOISE_DEG),
                    crouch_height_m=params.crouch_height_m + rng.uniform(-HEIGHT_NOISE_M, HEIGHT_NOISE_M))

@@ -9,10 +9,13 @@ Thresholds (numbers, not tuned curves):
 * suspicion: the seed agent's 100 °/s gyro trigger (|gyro_y| + |gyro_z| in its axes = our x and y, the
   axes a torso tips over about), an accelerometer spike (collisions, impacts), or a tilted torso (the
   filter's up axis below REFERENCE §8.1's 0.6, or gravity less than half along the torso's own up axis);
-* confirmation: CONFIRM_CYCLES consecutive cycles of a lying accelerometer and feet carrying less than
-  FEET_LOADED_N (the gyro may still be busy: a walk keeps swinging the legs of a fallen robot until the
-  stand-up replaces it); the stand-up then waits for a quiet gyro (at most SETTLE_CYCLES) before it reads
-  the side it plays;
+* confirmation: over the last CONFIRM_WINDOW cycles, the torso lay in at least CONFIRM_LYING of them (the
+  accelerometer at rest says so, or the orientation filter's up axis is below LYING_UP_Z) and the feet
+  carried less than FEET_LOADED_N in at least CONFIRM_UNLOADED (a walk keeps swinging the legs of a fallen
+  robot until the stand-up replaces it: the accelerometer is then rarely at rest and the feet hit the
+  ground now and then, so no single cycle may veto); the stand-up then stops every motion, waits for a
+  quiet gyro (at most SETTLE_CYCLES) and reads the side it plays from the accelerometer at rest, else from
+  the orientation filter;
 * success: an upright torso on loaded feet for RECOVERY_CYCLES after the motion; a robot not upright within
   CHECK_TIMEOUT_CYCLES (or lying again) tries again.
 
@@ -23,6 +26,7 @@ Weight: 4.6071 kg for every robot type (REFERENCE §2.5), 45.2 N; standing loads
 from __future__ import annotations
 
 import math
+from collections import deque
 
 from agent.motion import MotionController, MotionRequest
 from agent.skills.base import Skill
@@ -41,9 +45,16 @@ LYING_ACC_FRACTION = 0.5
 FEET_LOADED_N = 25.0
 #: Gyro rate below which the robot counts as at rest for the side decision of the stand-up [deg/s].
 QUIET_GYRO_DEG_S = 60.0
-#: Cycles of evidence before a fall is confirmed / a recovery is accepted.
-CONFIRM_CYCLES = 5
+#: Cycles of evidence before a fall is confirmed (window, cycles lying, cycles unloaded in it) / a recovery
+#: is accepted.
+CONFIRM_WINDOW = 6
+CONFIRM_LYING = 5
+CONFIRM_UNLOADED = 4
+CONFIRM_CYCLES = CONFIRM_WINDOW
 RECOVERY_CYCLES = 15
+#: The orientation filter's up-axis z below this = lying (it lags a sudden turn by about 1/gain = 0.5 s,
+#: but holds steady while kicking legs shake the accelerometer).
+LYING_UP_Z = 0.45
 #: Cycles after a stand-up motion within which the robot must stand, else it tries again.
 CHECK_TIMEOUT_CYCLES = 50
 #: Longest wait for a quiet gyro before a retry reads the side anyway.
@@ -76,9 +87,18 @@ def lying_side(world: WorldModel) -> str | None:
 
 
 def standup_side(world: WorldModel) -> str:
-    """"back" or "front": the stand-up to play, from the sign of gravity along the torso's forward axis
-    (a robot on its side or sitting leans one way or the other)."""
-    return "back" if world.body.acc_m_s2[1] > 0 else "front"
+    """"back" or "front": the stand-up to play. From the accelerometer when it reads gravity (the sign along
+    the torso's forward axis: a robot on its side or sitting leans one way or the other), else from the
+    orientation filter's forward lean."""
+    ax, ay, az = world.body.acc_m_s2
+    if abs(math.hypot(ax, ay, az) - GRAVITY_M_S2) < 0.3 * GRAVITY_M_S2:
+        return "back" if ay > 0 else "front"
+    return "front" if world.body.pitch_forward_rad > 0 else "back"
+
+
+def lying(world: WorldModel) -> bool:
+    """The torso lies: the accelerometer at rest says so, or the orientation filter does."""
+    return lying_side(world) is not None or world.body.up_z < LYING_UP_Z
 
 
 def upright_on_feet(world: WorldModel) -> bool:
@@ -88,7 +108,8 @@ def upright_on_feet(world: WorldModel) -> bool:
 
 class FallWatch:
     """Possible fall (gyro, accelerometer or tilt), confirmed by no weight on the feet and a lying
-    accelerometer; a suspicion ends after 2 * CONFIRM_CYCLES upright on loaded feet (a bump). ``fallen`` and
+    accelerometer or orientation filter (see the module docstring for the window); a suspicion ends after
+    2 * CONFIRM_WINDOW cycles upright on loaded feet (a bump). ``fallen`` and
     ``side`` hold until :meth:`reset`."""
 
     def __init__(self) -> None:
@@ -98,7 +119,7 @@ class FallWatch:
         self.suspected = False
         self.fallen = False
         self.side: str | None = None
-        self._evidence = 0
+        self._window: deque[tuple[bool, bool]] = deque(maxlen=CONFIRM_WINDOW)
         self._upright = 0
 
     def update(self, world: WorldModel) -> None:
@@ -111,17 +132,15 @@ class FallWatch:
             self.suspected = True
         if not self.suspected or self.fallen:
             return
-        side = lying_side(world)
-        if side is not None and feet_force_n(world) < FEET_LOADED_N:
-            self._evidence += 1
-        else:
-            self._evidence = 0
+        self._window.append((lying(world), feet_force_n(world) < FEET_LOADED_N))
         self._upright = self._upright + 1 if upright_on_feet(world) and rate < GYRO_TRIGGER_DEG_S else 0
-        if self._upright >= 2 * CONFIRM_CYCLES:
+        if self._upright >= 2 * CONFIRM_WINDOW:
             self.suspected = False  # a bump, not a fall
             self._upright = 0
-        if self._evidence >= CONFIRM_CYCLES:
-            self.fallen, self.side = True, side
+            self._window.clear()
+        if (len(self._window) == CONFIRM_WINDOW and sum(a for a, _ in self._window) >= CONFIRM_LYING
+                and sum(b for _, b in self._window) >= CONFIRM_UNLOADED):
+            self.fallen, self.side = True, lying_side(world) or standup_side(world)
 
 
 class StandUp(Skill):
@@ -157,8 +176,8 @@ class StandUp(Skill):
                 return MotionRequest(None)
             gx, gy, _ = world.body.gyro_deg_s
             if abs(gx) + abs(gy) > QUIET_GYRO_DEG_S and self._settle_cycles < SETTLE_CYCLES:
-                self._settle_cycles += 1  # still tumbling: the side is not known yet
-                return MotionRequest(None)
+                self._settle_cycles += 1  # still tumbling: the side is not known yet; stop every motion
+                return MotionRequest(None, interrupt=True)
             self._settle_cycles = 0
             side = lying_side(world)
             if side == "side" and SIDE_ROLL_MOTION in motion.library:

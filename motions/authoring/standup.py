@@ -2,9 +2,9 @@
 
 A stand-up is four parts, each keyframe symmetric (the right side mirrors the left):
 
-0. **Ready**: every joint to the walk stance's angles while still lying (``ready_ms``, stretched by the
-   controller's blending when the fall left the joints far away), so that what follows starts from one
-   known lying configuration whatever pose the fall ended in.
+0. **Ready** (optional, ``ready_ms`` > 0): every joint to the walk stance's angles while still lying
+   (stretched by the controller's blending when the fall left the joints far away), so that what follows
+   starts from one known lying configuration whatever pose the fall ended in.
 1. **Ground phases** (``[[<motion>.ground]]`` in the parameter file): joint-space keyframes while the torso
    still lies; they push the torso up with the arms and bring the feet under it. Each one's meaning is
    checked with forward kinematics (``kinematics.fk.NaoKinematics``) in the lying torso's frame: how far
@@ -104,7 +104,8 @@ class StandUpParams:
     ground: tuple[GroundPose, ...] = ()
     """Ground-phase keyframes, in order."""
     ready_ms: int = 200
-    """Duration of the first keyframe, the walk stance's joint angles while lying [ms]."""
+    """Duration of the first keyframe, the walk stance's joint angles while lying [ms]; 0 = no such keyframe
+    (the first ground phase starts at once)."""
     crouch_pitch_deg: float = 30.0
     """Torso lean forward in the crouch [deg]."""
     crouch_height_m: float = 0.27
@@ -395,9 +396,11 @@ def key_poses(params: StandUpParams, side: str, stance: GaitParams, solver: Sagi
     stance_solver = stance_solver or KeyframeSolver()
     stance_solver.ik.reset()
     stand = stance_pose(stance, stance_solver)
-    depths = solver.prop_depths_m(stand, side)
-    poses = [KeyPose("ready", params.ready_ms, stand, "the walk stance's joint angles, lying: " + ", ".join(
-        f"{group} {depth:+.3f} m" for group, depth in depths.items()), prop_depths_m=depths)]
+    poses = []
+    if params.ready_ms > 0:
+        depths = solver.prop_depths_m(stand, side)
+        poses.append(KeyPose("ready", params.ready_ms, stand, "the walk stance's joint angles, lying: " + ", ".join(
+            f"{group} {depth:+.3f} m" for group, depth in depths.items()), prop_depths_m=depths))
     for ground in params.ground:
         angles = ground.angles_rad()
         depths = solver.prop_depths_m(angles, side)

@@ -4,10 +4,12 @@ feet under an upright torso, retries; played through SkillBehavior with stand-in
 
 from __future__ import annotations
 
+import math
+
 from agent.motion import MotionController, MotionLibrary
 from agent.skills.behavior import SkillBehavior
-from agent.skills.standup import (CHECK_TIMEOUT_CYCLES, CONFIRM_CYCLES, RECOVERY_CYCLES, FallWatch, lying_side,
-                                  standup_side)
+from agent.skills.standup import (CHECK_TIMEOUT_CYCLES, CONFIRM_CYCLES, CONFIRM_LYING, RECOVERY_CYCLES, FallWatch,
+                                  lying_side, standup_side)
 from agent.world.state import FootContact
 from agent.world_model import WorldModel
 from kinematics import JOINT_NAMES
@@ -52,11 +54,27 @@ def test_fall_confirmed_only_after_the_feet_carry_nothing_for_a_while():
     _set(world, UPRIGHT, gyro=(250.0, 0.0, 0.0), feet=LOADED, up_z=0.9)  # the fall starts: gyro spike
     watch.update(world)
     assert watch.suspected and not watch.fallen
-    for cycle in range(CONFIRM_CYCLES):
-        assert not watch.fallen
+    for cycle in range(CONFIRM_LYING - 1):
+        _set(world, BACK, feet=EDGE_ON, up_z=0.05)
+        watch.update(world)
+    assert not watch.fallen
+    for cycle in range(CONFIRM_CYCLES - CONFIRM_LYING + 1):
         _set(world, BACK, feet=EDGE_ON, up_z=0.05)
         watch.update(world)
     assert watch.fallen and watch.side == "back"
+
+
+def test_fall_confirmed_while_a_walk_still_kicks_the_legs():
+    """Fallen on its front while the walk goes on: the accelerometer shakes (not at rest) and the feet hit the
+    ground every third cycle; the orientation filter still says the torso lies."""
+    world = _world()
+    watch = FallWatch()
+    world.body.pitch_forward_rad = math.radians(80.0)
+    for cycle in range(3 * CONFIRM_CYCLES):
+        shaken = (3.0, -17.0, 4.0) if cycle % 2 else (-1.0, -4.0, -5.0)
+        _set(world, shaken, gyro=(90.0, 40.0, 150.0), feet=LOADED if cycle % 3 == 0 else {}, up_z=-0.25)
+        watch.update(world)
+    assert watch.fallen and watch.side == "front"
 
 
 def test_a_bump_is_not_a_fall():

@@ -12,8 +12,9 @@ import pytest
 from agent.skills.base import PlayMotion
 from motion_studio.scenarios import Scenario, Truth
 
-#: Bound on the time to stand (the benchmark's target is 3 s; a retry may add one more motion).
-LIMIT_S = 6.0
+#: Bound on the time to stand: one stand-up takes about 3 s (the benchmark measures the 3 s target), and
+#: a failed first attempt may be followed by a retry.
+LIMIT_S = 8.0
 HOLD_CYCLES = 25  # standing for 0.5 s counts
 STANCE_CYCLES = 25
 
