@@ -13,9 +13,10 @@ Thresholds (numbers, not tuned curves):
   accelerometer at rest says so, or the orientation filter's up axis is below LYING_UP_Z) and the feet
   carried less than FEET_LOADED_N in at least CONFIRM_UNLOADED (a walk keeps swinging the legs of a fallen
   robot until the stand-up replaces it: the accelerometer is then rarely at rest and the feet hit the
-  ground now and then, so no single cycle may veto); the stand-up then stops every motion, waits for a
-  quiet gyro (at most SETTLE_CYCLES) and reads the side it plays from the accelerometer at rest, else from
-  the orientation filter;
+  ground now and then, so no single cycle may veto); the stand-up then stops every motion, waits until the
+  robot rests (QUIET_CYCLES of a quiet gyro and a gravity-like accelerometer, at most SETTLE_CYCLES) and
+  reads the side it plays from the accelerometer, else from the orientation filter; a robot on its side
+  first plays ``roll_to_back``;
 * success: an upright torso on loaded feet for RECOVERY_CYCLES after the motion; a robot not upright within
   CHECK_TIMEOUT_CYCLES (or lying again) tries again.
 
@@ -57,13 +58,16 @@ RECOVERY_CYCLES = 15
 LYING_UP_Z = 0.45
 #: Cycles after a stand-up motion within which the robot must stand, else it tries again.
 CHECK_TIMEOUT_CYCLES = 50
-#: Longest wait for a quiet gyro before a retry reads the side anyway.
+#: At rest for the side decision: QUIET_CYCLES cycles in a row with a quiet gyro and the accelerometer within
+#: REST_ACC_FRACTION of g (an impact spike says nothing about the side); the longest wait for it.
+QUIET_CYCLES = 3
+REST_ACC_FRACTION = 0.3
 SETTLE_CYCLES = 25
 #: Torso up-axis z above this = upright.
 UPRIGHT_UP_Z = 0.85
 #: Motions by the side the robot lies on.
 STANDUP_MOTIONS = {"back": "standup_back", "front": "standup_front"}
-#: Optional motion that rolls a robot lying on its side onto its back (played when the library has it).
+#: Motion that rolls a robot lying on its side onto its back (played when the library has it).
 SIDE_ROLL_MOTION = "roll_to_back"
 
 
@@ -167,6 +171,7 @@ class StandUp(Skill):
         self._upright_cycles = 0
         self._check_cycles = 0
         self._settle_cycles = 0
+        self._quiet_cycles = 0
         self.state = "choose"
 
     def step(self, world: WorldModel, motion: MotionController) -> MotionRequest:
@@ -175,10 +180,14 @@ class StandUp(Skill):
                 self._enter_check()
                 return MotionRequest(None)
             gx, gy, _ = world.body.gyro_deg_s
-            if abs(gx) + abs(gy) > QUIET_GYRO_DEG_S and self._settle_cycles < SETTLE_CYCLES:
+            at_rest = (abs(gx) + abs(gy) < QUIET_GYRO_DEG_S
+                       and abs(math.hypot(*world.body.acc_m_s2) - GRAVITY_M_S2) < REST_ACC_FRACTION * GRAVITY_M_S2)
+            self._quiet_cycles = self._quiet_cycles + 1 if at_rest else 0
+            if self._quiet_cycles < QUIET_CYCLES and self._settle_cycles < SETTLE_CYCLES:
                 self._settle_cycles += 1  # still tumbling: the side is not known yet; stop every motion
                 return MotionRequest(None, interrupt=True)
             self._settle_cycles = 0
+            self._quiet_cycles = 0
             side = lying_side(world)
             if side == "side" and SIDE_ROLL_MOTION in motion.library:
                 name = SIDE_ROLL_MOTION

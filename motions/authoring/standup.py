@@ -24,7 +24,8 @@ sole target relative to the torso) until the CoM lies over its target (fixed poi
 
 Parameters live in ``motions/params/standup.toml`` (one section per motion; tuned on our simulator by
 ``python -m motion_studio.tune_standup``). Run ``python -m motions.authoring.standup`` to write
-``standup_front.xml`` and ``standup_back.xml`` into ``motions/files/``.
+``standup_front.xml``, ``standup_back.xml`` and ``roll_to_back.xml`` (a robot lying on its side rolls onto its
+back first) into ``motions/files/``.
 """
 
 from __future__ import annotations
@@ -48,6 +49,10 @@ from motions.model import XML, Keyframe, Motion
 PARAMS_PATH = PARAMS_DIR / "standup.toml"
 #: The stand-ups: motion name = section name; the side the robot lies on.
 STANDUPS: dict[str, str] = {"standup_front": "front", "standup_back": "back"}
+#: Motions made of ground phases only (same section layout, crouch keys unused): a robot lying on its side
+#: rolls onto its back with the arms spread, then pulled in while the legs curl (tried on our simulator from
+#: both sides; a robot already on its back or front stays there).
+ROLLS: dict[str, str] = {"roll_to_back": "side"}
 #: Section of the gait file that holds the walk stance.
 STANCE_SECTION = "stand"
 #: Keys of a section that record results, not parameters.
@@ -458,6 +463,20 @@ def build_standup(name: str, params: StandUpParams, side: str, stance: GaitParam
     return Motion(name, phases, source_format=XML, first_phase=poses[0].name, header_comments=header_comments)
 
 
+def build_roll(name: str, params: StandUpParams, header_comments: tuple[str, ...] = ()) -> Motion:
+    """A motion of ground phases only, played once (e.g. ``roll_to_back``).
+
+    Raises:
+        ValueError: no ground phases, or a phase shorter than one cycle.
+    """
+    if not params.ground:
+        raise ValueError(f"{name}: needs at least one ground phase")
+    poses = [KeyPose(g.name, g.duration_ms, g.angles_rad()) for g in params.ground]
+    phases = [_phase(pose, next=None if i == len(poses) - 1 else poses[i + 1].name,
+                     is_final=True if i == len(poses) - 1 else None) for i, pose in enumerate(poses)]
+    return Motion(name, phases, source_format=XML, first_phase=poses[0].name, header_comments=header_comments)
+
+
 def describe(poses: Sequence[KeyPose]) -> tuple[str, ...]:
     """Header lines: each keyframe with its duration and its kinematic note."""
     return tuple(f" {pose.name} ({pose.duration_ms} ms): {pose.note} " for pose in poses)
@@ -485,6 +504,17 @@ def build_all(path: Path = PARAMS_PATH, gait_path: Path = GAIT_PARAMS_PATH) -> d
         if meta:
             comments += tuple(f" {key}: {value} ".replace("--", "- -") for key, value in meta.items())
         out[name] = build_standup(name, params, side, stance, comments, solver)
+    for name in ROLLS:
+        if name not in sections:
+            raise ValueError(f"{path}: no section [{name}]; known: {', '.join(sorted(sections))}")
+        params = sections[name]
+        comments = tuple(c.replace("sagittal IK on kinematics.fk.NaoKinematics, stance by kinematics.ik.WholeBodyIK",
+                                   "joint-space keyframes") for c in
+                         header("motions.authoring.standup", path, name, replace(params, ground=()), command))
+        comments += (" Ground phases only (left side, right mirrored): " + "; ".join(
+            f"{g.name} {g.duration_ms} ms" for g in params.ground) + " ",)
+        comments += tuple(f" {key}: {value} ".replace("--", "- -") for key, value in read_meta(path, name).items())
+        out[name] = build_roll(name, params, comments)
     return out
 
 
@@ -514,6 +544,7 @@ if __name__ == "__main__":
     main()
 
 
-__all__ = ["GroundPose", "KeyPose", "SagittalSolver", "StandUpParams", "STANDUPS", "build_all", "build_standup",
+__all__ = ["GroundPose", "KeyPose", "ROLLS", "SagittalSolver", "StandUpParams", "STANDUPS", "build_all", "build_roll",
+           "build_standup",
            "dumps_section", "key_poses", "load_standup_params", "parse_standup_params", "stance_params",
            "symmetric_angles_rad", "write_all"]

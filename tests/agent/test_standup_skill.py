@@ -8,8 +8,8 @@ import math
 
 from agent.motion import MotionController, MotionLibrary
 from agent.skills.behavior import SkillBehavior
-from agent.skills.standup import (CHECK_TIMEOUT_CYCLES, CONFIRM_CYCLES, CONFIRM_LYING, RECOVERY_CYCLES, FallWatch,
-                                  lying_side, standup_side)
+from agent.skills.standup import (CHECK_TIMEOUT_CYCLES, CONFIRM_CYCLES, CONFIRM_LYING, QUIET_CYCLES, RECOVERY_CYCLES,
+                                  FallWatch, lying_side, standup_side)
 from agent.world.state import FootContact
 from agent.world_model import WorldModel
 from kinematics import JOINT_NAMES
@@ -133,7 +133,7 @@ def _play_to_end(behavior: SkillBehavior, world: WorldModel, name: str) -> None:
 def test_behavior_plays_the_side_standup_and_ends_once_the_feet_carry_an_upright_robot():
     behavior, world = _behavior(), _world()
     _set(world, FRONT, feet={}, up_z=0.1)
-    _cycle(behavior, world, CONFIRM_CYCLES + 1)
+    _cycle(behavior, world, CONFIRM_CYCLES + QUIET_CYCLES)
     assert behavior.recovering and behavior.standup.sides == ["front"]
     _play_to_end(behavior, world, "standup_front")
     _set(world, UPRIGHT, feet=LOADED, up_z=0.97)
@@ -148,7 +148,7 @@ def test_standup_retries_with_the_side_it_lies_on_now():
     _cycle(behavior, world, CONFIRM_CYCLES + 1)
     _play_to_end(behavior, world, "standup_back")
     _set(world, FRONT, feet={}, up_z=0.1)  # it rolled over onto its front instead of standing
-    _cycle(behavior, world, 8)
+    _cycle(behavior, world, 8 + QUIET_CYCLES)
     assert behavior.standup.sides == ["back", "front"]
     assert behavior.recovering
 
@@ -160,7 +160,7 @@ def test_standup_waits_for_the_robot_to_come_to_rest_before_it_reads_the_side():
         _cycle(behavior, world)
     assert behavior.recovering and behavior.standup.attempts == 0
     _set(world, FRONT, feet={}, up_z=0.1)  # it came to rest on its front
-    _cycle(behavior, world, 2)
+    _cycle(behavior, world, QUIET_CYCLES)
     assert behavior.standup.sides == ["front"]
 
 
@@ -170,5 +170,5 @@ def test_standup_retries_when_not_upright_in_time():
     _cycle(behavior, world, CONFIRM_CYCLES + 1)
     _play_to_end(behavior, world, "standup_back")
     _set(world, (0.0, 4.0, 8.9), feet=EDGE_ON, up_z=0.9)  # sitting: upright-ish, feet unloaded, not lying
-    _cycle(behavior, world, CHECK_TIMEOUT_CYCLES + 2)
+    _cycle(behavior, world, CHECK_TIMEOUT_CYCLES + 1 + QUIET_CYCLES)
     assert behavior.standup.attempts == 2 and behavior.standup.sides == ["back", "back"]
