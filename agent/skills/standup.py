@@ -13,7 +13,8 @@ Thresholds (numbers, not tuned curves):
   accelerometer at rest says so, or the orientation filter's up axis is below LYING_UP_Z) and the feet
   carried less than FEET_LOADED_N in at least CONFIRM_UNLOADED (a walk keeps swinging the legs of a fallen
   robot until the stand-up replaces it: the accelerometer is then rarely at rest and the feet hit the
-  ground now and then, so no single cycle may veto); the stand-up then stops every motion, waits until the
+  ground now and then, so no single cycle may veto), or the feet carried nothing for UNLOADED_CYCLES in a
+  row (sitting, kneeling); the stand-up then stops every motion, waits until the
   robot rests (QUIET_CYCLES of a quiet gyro and a gravity-like accelerometer, at most SETTLE_CYCLES) and
   reads the side it plays from the accelerometer, else from the orientation filter; a robot on its side
   first plays ``roll_to_back``;
@@ -53,6 +54,9 @@ CONFIRM_LYING = 5
 CONFIRM_UNLOADED = 4
 CONFIRM_CYCLES = CONFIRM_WINDOW
 RECOVERY_CYCLES = 15
+#: After a suspicion, feet unloaded this long also confirm a fall, lying or not (a robot sitting, kneeling or
+#: stuck on its arms); standing and walking keep at least one foot loaded.
+UNLOADED_CYCLES = 50
 #: The orientation filter's up-axis z below this = lying (it lags a sudden turn by about 1/gain = 0.5 s,
 #: but holds steady while kicking legs shake the accelerometer).
 LYING_UP_Z = 0.45
@@ -125,6 +129,7 @@ class FallWatch:
         self.side: str | None = None
         self._window: deque[tuple[bool, bool]] = deque(maxlen=CONFIRM_WINDOW)
         self._upright = 0
+        self._unloaded = 0
 
     def update(self, world: WorldModel) -> None:
         body = world.body
@@ -136,14 +141,17 @@ class FallWatch:
             self.suspected = True
         if not self.suspected or self.fallen:
             return
-        self._window.append((lying(world), feet_force_n(world) < FEET_LOADED_N))
+        unloaded = feet_force_n(world) < FEET_LOADED_N
+        self._window.append((lying(world), unloaded))
+        self._unloaded = self._unloaded + 1 if unloaded else 0
         self._upright = self._upright + 1 if upright_on_feet(world) and rate < GYRO_TRIGGER_DEG_S else 0
         if self._upright >= 2 * CONFIRM_WINDOW:
             self.suspected = False  # a bump, not a fall
             self._upright = 0
             self._window.clear()
-        if (len(self._window) == CONFIRM_WINDOW and sum(a for a, _ in self._window) >= CONFIRM_LYING
-                and sum(b for _, b in self._window) >= CONFIRM_UNLOADED):
+        lies = (len(self._window) == CONFIRM_WINDOW and sum(a for a, _ in self._window) >= CONFIRM_LYING
+                and sum(b for _, b in self._window) >= CONFIRM_UNLOADED)
+        if lies or self._unloaded >= UNLOADED_CYCLES:  # the latter: sitting, kneeling, stuck on its arms
             self.fallen, self.side = True, lying_side(world) or standup_side(world)
 
 

@@ -9,7 +9,7 @@ import math
 from agent.motion import MotionController, MotionLibrary
 from agent.skills.behavior import SkillBehavior
 from agent.skills.standup import (CHECK_TIMEOUT_CYCLES, CONFIRM_CYCLES, CONFIRM_LYING, QUIET_CYCLES, RECOVERY_CYCLES,
-                                  FallWatch, lying_side, standup_side)
+                                  UNLOADED_CYCLES, FallWatch, lying_side, standup_side)
 from agent.world.state import FootContact
 from agent.world_model import WorldModel
 from kinematics import JOINT_NAMES
@@ -99,6 +99,19 @@ def test_lying_with_loaded_feet_is_not_a_fall():
     for _ in range(CONFIRM_CYCLES):
         _set(world, BACK, feet={}, up_z=0.05)
         watch.update(world)
+    assert watch.fallen and watch.side == "back"
+
+
+def test_sitting_with_unloaded_feet_is_a_fall_after_a_while():
+    world = _world()
+    watch = FallWatch()
+    _set(world, UPRIGHT, gyro=(250.0, 0.0, 0.0), feet=LOADED, up_z=0.9)
+    watch.update(world)
+    for _ in range(UNLOADED_CYCLES - 1):  # sitting on its bottom: torso up, feet in the air
+        _set(world, (0.0, 4.0, 8.9), feet={}, up_z=0.9)
+        watch.update(world)
+    assert not watch.fallen
+    watch.update(world)
     assert watch.fallen and watch.side == "back"
 
 
