@@ -43,6 +43,12 @@ SUPPORT_CLEARANCE_M = 1.5
 PATH_CLEARANCE_M = 1.0
 #: Length of the ball's path toward the goal that support spots keep clear of [m].
 BALL_PATH_M = 3.0
+#: The second attacker (the lowest unum among the field players that do not play the ball) stands this far
+#: behind the ball, toward the own goal, and this far to the side [m]: near enough to take the ball over when
+#: the on-ball player falls or loses it (with formation spots alone, the only supporter of a 3 v 3 team
+#: stood 9-12 m from the ball all match).
+SECOND_BEHIND_M = 2.5
+SECOND_SIDE_M = 1.5
 #: Field bounds the support spots are kept inside, team frame [m]; field players stay out of the own
 #: penalty area (more than 3 defenders there is a foul, REFERENCE §4.5 "illegal defence").
 FIELD_X_MIN_M = PENALTY_AREA_X_M + 0.4
@@ -173,6 +179,30 @@ def support_spot(unum: int, ball: tuple[float, float] | None,
     return x, y
 
 
+def second_attacker(players: list[Candidate], holder: int | None) -> int | None:
+    """The unum of the second attacker: the lowest field-player unum that does not play the ball."""
+    others = [p.unum for p in players if p.unum not in (holder, GOALKEEPER_UNUM)]
+    return min(others, default=None)
+
+
+def second_attacker_spot(ball: tuple[float, float], holder: tuple[float, float] | None) -> tuple[float, float]:
+    """Where the second attacker stands [m]: ``SECOND_BEHIND_M`` behind the ball on the line from the opponent
+    goal, ``SECOND_SIDE_M`` to the side the on-ball player is not on, clear of the play's paths, in the field."""
+    to_goal = math.atan2(OPPONENT_GOAL_M[1] - ball[1], OPPONENT_GOAL_M[0] - ball[0])
+    ux, uy = math.cos(to_goal), math.sin(to_goal)
+    side = 1.0
+    if holder is not None:
+        # Left of the ball->goal line is +; stand on the other side than the holder.
+        side = -1.0 if (ux * (holder[1] - ball[1]) - uy * (holder[0] - ball[0])) > 0 else 1.0
+    if abs(ball[1] + side * SECOND_SIDE_M * ux) > FIELD_Y_LIMIT_M:
+        side = -side
+    x = ball[0] - SECOND_BEHIND_M * ux - side * SECOND_SIDE_M * uy
+    y = ball[1] - SECOND_BEHIND_M * uy + side * SECOND_SIDE_M * ux
+    if holder is not None:
+        x, y = clear_of_segment((x, y), holder, ball, PATH_CLEARANCE_M)
+    return max(FIELD_X_MIN_M, min(FIELD_X_LIMIT_M, x)), max(-FIELD_Y_LIMIT_M, min(FIELD_Y_LIMIT_M, y))
+
+
 def keeper_spot(ball: tuple[float, float] | None) -> tuple[float, float]:
     """The goalkeeper's guard spot [m]: on its line, following the ball's y within the goal's width."""
     y = 0.0 if ball is None else max(-KEEPER_HALF_WIDTH_M, min(KEEPER_HALF_WIDTH_M, 0.3 * ball[1]))
@@ -180,4 +210,4 @@ def keeper_spot(ball: tuple[float, float] | None) -> tuple[float, float]:
 
 
 __all__ = ["Candidate", "ball_belief", "candidates", "choose_on_ball", "clear_of_segment", "keeper_plays_ball",
-           "keeper_spot", "on_ball_cost", "support_spot"]
+           "keeper_spot", "on_ball_cost", "second_attacker", "second_attacker_spot", "support_spot"]

@@ -2,9 +2,11 @@
 
 Roles (``agent.team.roles``): the player that the shared on-ball rule picks goes to the ball and kicks it
 toward the opponent goal (the seed's choice, REFERENCE §7.8: the normal kick when the goal is nearer than
-2.5 m, else the strong kick; a library without kicks makes it dribble); the goalkeeper guards its line facing the ball; the others walk to support
-spots that follow the ball and face it. Nobody moves while the play mode forbids it (before kick-off, after
-a goal, game over); during the opponents' set pieces the on-ball player keeps its distance like the others.
+2.5 m, else the strong kick; a library without kicks makes it dribble); the goalkeeper guards its line
+facing the ball; the second attacker (``roles.second_attacker``) waits 2.5 m behind the ball, to the side,
+to take over; the others walk to support spots that follow the ball and face it, all clear of the on-ball
+player's path. Nobody moves while the play mode forbids it (before kick-off, after a goal, game over);
+during the opponents' set pieces the on-ball player keeps its distance like the others.
 
 Skills are kept while the decision stays the same (a new ``WalkTo`` only when its target moved more than
 ``RETARGET_M``), so their internal state (turns under way, stops) is not cut off every cycle. Falls are
@@ -107,7 +109,10 @@ class SoccerBehavior:
             return
         self.role = "support"
         holder = next(((p.x_m, p.y_m) for p in players if p.unum == self.holder), None)
-        spot = roles.support_spot(world.unum, ball, holder)
+        if roles.second_attacker(players, self.holder) == world.unum:
+            spot = roles.second_attacker_spot(ball, holder)
+        else:
+            spot = roles.support_spot(world.unum, ball, holder)
         if set_piece is False:
             spot = _keep_clear(spot, ball, SET_PIECE_CLEARANCE_M)
         self._stand_at(world, spot, ball)

@@ -99,3 +99,18 @@ def test_support_spots_keep_clear_of_the_on_ball_players_path_and_the_balls_way_
             heading = math.atan2(OPPONENT_GOAL_M[1] - ball[1], OPPONENT_GOAL_M[0] - ball[0])
             ahead = (ball[0] + BALL_PATH_M * math.cos(heading), ball[1] + BALL_PATH_M * math.sin(heading))
             assert distance_to_segment(spot, ball, ahead) >= PATH_CLEARANCE_M - 1e-6
+
+
+def test_the_second_attacker_waits_behind_the_ball_away_from_the_on_ball_players_side():
+    from agent.team.roles import SECOND_BEHIND_M, second_attacker, second_attacker_spot
+
+    players = [Candidate(1, -14.0, 0.0), Candidate(2, -6.0, 1.0), Candidate(3, -9.0, -3.0), Candidate(4, -8.0, 2.0)]
+    assert second_attacker(players, holder=2) == 3  # lowest field-player unum besides the holder
+    assert second_attacker(players, holder=3) == 2
+    assert second_attacker([Candidate(1, -14.0, 0.0), Candidate(2, 0.0, 0.0)], holder=2) is None
+    ball = (0.0, 0.0)
+    spot = second_attacker_spot(ball, holder=(-1.0, 1.0))  # the holder comes from the left
+    assert spot[0] < ball[0] - 1.5 and spot[1] < 0.0  # behind the ball, on the right
+    assert math.dist(spot, ball) == pytest.approx(math.hypot(SECOND_BEHIND_M, 1.5), abs=0.3)
+    near_touch_line = second_attacker_spot((2.0, -9.0), holder=(1.0, -8.0))
+    assert abs(near_touch_line[1]) <= 9.5
