@@ -31,6 +31,16 @@ class Push:
     left_m_s: float = 0.0
 
 
+def apply_due_pushes(scenario: Scenario, pending: list[Push], time_s: float) -> None:
+    """Give the robot every push of ``pending`` (sorted by time) that is due at ``time_s`` [s] and drop it
+    from the list; the push's robot-frame velocity is turned into the world frame by the current heading."""
+    while pending and time_s >= pending[0].time_s:
+        push = pending.pop(0)
+        heading = math.radians(scenario.truth().heading_deg)
+        c, s = math.cos(heading), math.sin(heading)
+        scenario.push((c * push.forward_m_s - s * push.left_m_s, s * push.forward_m_s + c * push.left_m_s, 0.0))
+
+
 @dataclass
 class WalkRun:
     """A measured walk. Distances in the start frame of the robot (forward = start heading, left)."""
@@ -145,11 +155,7 @@ def run_walk(library: MotionLibrary, motion: str, duration_s: float, *, position
     cycles = int(round(duration_s / CYCLE_S))
     walk_cycles = cycles
     for index in range(cycles):
-        while pending and index * CYCLE_S >= pending[0].time_s:
-            push = pending.pop(0)
-            heading = math.radians(scenario.truth().heading_deg)
-            c, s = math.cos(heading), math.sin(heading)
-            scenario.push((c * push.forward_m_s - s * push.left_m_s, s * push.forward_m_s + c * push.left_m_s, 0.0))
+        apply_due_pushes(scenario, pending, index * CYCLE_S)
         truth = scenario.run(1)[0]
         truths.append(truth)
         if truth.fallen:

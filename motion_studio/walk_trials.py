@@ -22,7 +22,7 @@ from agent.skills.base import Skill
 from agent.world_model import WorldModel
 from motions.model import Motion
 from motion_studio.scenarios import Scenario, Truth
-from motion_studio.walk_rollout import BALL_AWAY_M, CYCLE_S, Push, make_controller
+from motion_studio.walk_rollout import BALL_AWAY_M, CYCLE_S, Push, apply_due_pushes, make_controller
 
 FORWARD = "walk_forward"
 TURNS = ("turn_left", "turn_right")
@@ -145,11 +145,7 @@ def run_script(library: MotionLibrary, script: Script, *, dynamic: DynamicParams
     settle_cycles = int(round(settle_s / CYCLE_S))
     done_at: int | None = None
     for index in range(limit):
-        while pending and index * CYCLE_S >= pending[0].time_s:
-            push = pending.pop(0)
-            heading = math.radians(scenario.truth().heading_deg)
-            c, s = math.cos(heading), math.sin(heading)
-            scenario.push((c * push.forward_m_s - s * push.left_m_s, s * push.forward_m_s + c * push.left_m_s, 0.0))
+        apply_due_pushes(scenario, pending, index * CYCLE_S)
         truth = scenario.run(1)[0]
         truths.append(truth)
         if truth.up_z >= TILT_UP_Z:
