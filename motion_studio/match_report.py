@@ -11,11 +11,15 @@ from tqdm import tqdm
 from motion_studio.match_agents import make_agent
 from sim.match import MatchConfig, run_match
 from sim.match_batch import append_result, batch_configs, finished_ids, read_results, run_batch
+from sim.ray_executor import RayExecutor
 
 
 def run_and_report(*, players: int, duration_s: float, matches: int, workers: int, seed: int, out: Path,
-                   log: bool, team_left: str, team_right: str, resume: bool) -> tuple[list[str], list[dict]]:
-    """Play the matches (one with a live game-time bar, a batch with a per-match bar); return report lines."""
+                   log: bool, team_left: str, team_right: str, resume: bool,
+                   ray_address: str | None = None) -> tuple[list[str], list[dict]]:
+    """Play the matches (one with a live game-time bar, a batch with a per-match bar); return report lines.
+
+    With ``ray_address`` the batch runs as Ray tasks (`sim.ray_executor`); the checkpoint stays here."""
     out.mkdir(parents=True, exist_ok=True)
     checkpoint = out / "results.jsonl"
     if not resume and checkpoint.exists():
@@ -23,7 +27,15 @@ def run_and_report(*, players: int, duration_s: float, matches: int, workers: in
     base = MatchConfig(team_left=team_left, team_right=team_right, players_per_team=players, duration_s=duration_s,
                        seed=seed, log_path=str(out / "match.log.gz") if log else None, match_id="match")
     configs = batch_configs(base, matches, seed)
-    if matches == 1 and workers <= 1:
+    if ray_address is not None:
+        executor = RayExecutor(ray_address, num_cpus=workers if workers > 1 else None)
+        try:
+            with tqdm(total=len(configs), desc=f"matches (Ray, {executor.cluster_cpus} CPUs)", unit="match") as bar:
+                results = run_batch(configs, make_agent, checkpoint, on_result=lambda _: bar.update(1),
+                                    executor=executor)
+        finally:
+            executor.shutdown()
+    elif matches == 1 and workers <= 1:
         results = _single(configs[0], checkpoint)
     else:
         with tqdm(total=len(configs), desc="matches", unit="match") as bar:

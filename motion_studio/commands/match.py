@@ -17,6 +17,8 @@ def match(
     duration: Annotated[float, typer.Option(help="game time to play, s (600 = two halves)")] = 600.0,
     matches: Annotated[int, typer.Option(help="number of matches (seeds seed..seed+N-1)")] = 1,
     workers: Annotated[int, typer.Option(help="parallel processes for a batch")] = 1,
+    ray: Annotated[Optional[str], typer.Option(
+        help="run the batch on Ray: 'auto' or HOST:PORT joins a cluster, 'local' starts Ray here")] = None,
     seed: Annotated[int, typer.Option(help="first seed")] = 0,
     out: Annotated[Path, typer.Option(help="output folder: results.jsonl (checkpoint), logs, plot")] = Path("out/match"),
     log: Annotated[bool, typer.Option(help="write a SimSpark monitor log per match")] = True,
@@ -27,10 +29,15 @@ def match(
 ) -> None:
     """Play matches with our agents and motions; results go to OUT/results.jsonl as each match ends."""
     from motion_studio.match_report import run_and_report
+    from sim.ray_executor import RayUnavailable
 
-    lines, results = run_and_report(players=players, duration_s=duration, matches=matches, workers=workers,
-                                    seed=seed, out=out, log=log, team_left=team_left, team_right=team_right,
-                                    resume=resume)
+    try:
+        lines, results = run_and_report(players=players, duration_s=duration, matches=matches, workers=workers,
+                                        seed=seed, out=out, log=log, team_left=team_left, team_right=team_right,
+                                        resume=resume, ray_address=ray)
+    except RayUnavailable as error:  # say so, no traceback
+        typer.echo(f"error: {error}", err=True)
+        raise typer.Exit(2) from None
     if summary_json:
         typer.echo(json.dumps(results))
         return
