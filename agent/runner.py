@@ -29,6 +29,7 @@ from agent.errors import ConfigError, ServerUnreachable
 from agent.localization import DEFAULT_LOCALIZER, LOCALIZERS
 from agent.protocol.errors import ProtocolError
 from agent.protocol.framing import read_frame, write_frame
+from agent.team.composition import robot_type_for
 
 logger = logging.getLogger(__name__)
 
@@ -164,6 +165,19 @@ def run(config: AgentConfig, host: str = DEFAULT_HOST, port: int = DEFAULT_PORT,
                        policy.max_reconnects)
 
 
+def _robot_type_arg(text: str) -> int | str:
+    """``--type``: 0-4 or ``auto``."""
+    if text == "auto":
+        return text
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"robot type must be 0-4 or auto, got {text!r}") from None
+    if not 0 <= value <= 4:
+        raise argparse.ArgumentTypeError(f"robot type must be 0-4 or auto, got {value}")
+    return value
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The usual rcssserver3d agent flags."""
     parser = argparse.ArgumentParser(prog="python -m agent", description="Run one Nao soccer agent over TCP.")
@@ -171,7 +185,9 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--port", type=int, default=DEFAULT_PORT, help="agent port (default 3100)")
     parser.add_argument("--team", default="Nao3D", help="team name (default Nao3D)")
     parser.add_argument("--unum", type=int, default=0, help="uniform number 1-11, 0 = next free (default 0)")
-    parser.add_argument("--type", dest="robot_type", type=int, default=0, help="robot type 0-4 (default 0)")
+    parser.add_argument("--type", dest="robot_type", type=_robot_type_arg, default="auto",
+                        help="robot type 0-4, or auto: our team's type for the unum (agent.team.composition: "
+                             "0, 2, 4 cycled; 0 when --unum is 0) (default auto)")
     parser.add_argument("--localization", default=DEFAULT_LOCALIZER, choices=sorted(LOCALIZERS),
                         help=f"self-localization method (default {DEFAULT_LOCALIZER})")
     parser.add_argument("--behavior", default=DEFAULT_BEHAVIOR, choices=sorted(BEHAVIORS),
@@ -187,7 +203,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     """CLI entry: returns the process exit code (0 done, 2 bad options or no server)."""
     args = build_parser().parse_args(argv)
     logging.basicConfig(level=args.log_level.upper(), format="%(asctime)s %(levelname)s %(name)s: %(message)s")
-    return run_cli(args.host, args.port, args.team, args.unum, args.robot_type, args.localization, args.attempts,
+    robot_type = robot_type_for(args.unum) if args.robot_type == "auto" else args.robot_type
+    return run_cli(args.host, args.port, args.team, args.unum, robot_type, args.localization, args.attempts,
                    args.behavior)
 
 

@@ -15,14 +15,22 @@ def agent_command(
     port: Annotated[int, typer.Option(help="agent port")] = 3100,
     team: Annotated[str, typer.Option(help="team name")] = "Nao3D",
     unum: Annotated[int, typer.Option(help="uniform number 1-11, 0 = next free")] = 0,
-    robot_type: Annotated[int, typer.Option("--type", help="robot type 0-4")] = 0,
+    robot_type: Annotated[str, typer.Option("--type", help="robot type 0-4, or auto (our team's type for the "
+                                                           "unum: 0, 2, 4 cycled)")] = "auto",
     localization: Annotated[str, typer.Option(help="self-localization: ekf or seed")] = "ekf",
     attempts: Annotated[int, typer.Option(help="connection attempts before giving up")] = 5,
     behavior: Annotated[str, typer.Option(help="soccer (play with the shipped motions) or idle")] = "soccer",
 ) -> None:
     """Connect to HOST:PORT, join TEAM as UNUM and play until the server goes away."""
     from agent.runner import run_cli
+    from agent.team.composition import robot_type_for
 
-    code = run_cli(host, port, team, unum, robot_type, localization, attempts, behavior)
+    if robot_type == "auto":
+        chosen = robot_type_for(unum)
+    elif robot_type in {"0", "1", "2", "3", "4"}:
+        chosen = int(robot_type)
+    else:
+        raise typer.BadParameter(f"robot type must be 0-4 or auto, got {robot_type!r}", param_hint="--type")
+    code = run_cli(host, port, team, unum, chosen, localization, attempts, behavior)
     if code:
         raise typer.Exit(code)

@@ -1,0 +1,26 @@
+"""Which robot type each of our players asks for (REFERENCE §2.5: a team fields at least 3 types, at most 7
+robots of one type and 9 of any two).
+
+Why 0, 2 and 4: those are the types our motion library stands up with (``motions/authoring/
+standup_types.py``: measured on our simulator, types 1 and 3, with their longer legs, do not get up from the
+front with any stand-up we have). The types cycle by uniform number, so every team size from 3 up is legal
+(11 players: four of type 0, four of type 2, three of type 4) and the goalkeeper (unum 1) is type 0, the
+type every motion was tuned on.
+"""
+
+from __future__ import annotations
+
+#: The types our players use, in the order uniform numbers take them.
+TEAM_TYPES: tuple[int, ...] = (0, 2, 4)
+#: The type an agent asks for when its uniform number is left to the server (unum 0).
+UNKNOWN_UNUM_TYPE = 0
+
+
+def robot_type_for(unum: int) -> int:
+    """Robot type for uniform number ``unum`` (1-11); ``UNKNOWN_UNUM_TYPE`` for 0 (the server picks)."""
+    if unum <= 0:
+        return UNKNOWN_UNUM_TYPE
+    return TEAM_TYPES[(unum - 1) % len(TEAM_TYPES)]
+
+
+__all__ = ["TEAM_TYPES", "UNKNOWN_UNUM_TYPE", "robot_type_for"]

@@ -1,0 +1,50 @@
+"""Per-type stand-ups: the shipped type-4 files are what the generator makes from today's parameters, their
+crouch and rise put the CoM over type 4's own soles, and they end in the shared stand pose."""
+
+import math
+
+import pytest
+
+from kinematics.fk import torso_rotation
+from motions import load
+from motions.authoring.common import FILES_DIR
+from motions.authoring.standup import SagittalSolver, load_standup_params
+from motions.authoring.standup_types import TYPES, build_for_type, write_all
+
+
+@pytest.mark.parametrize("robot_type", TYPES)
+def test_shipped_type_standups_match_the_generator(tmp_path, robot_type):
+    for path in write_all(tmp_path, (robot_type,)):
+        fresh, shipped = load(path), load(FILES_DIR / f"type{robot_type}" / path.name)
+        assert [k.name for k in fresh.keyframes] == [k.name for k in shipped.keyframes], path.name
+        for a, b in zip(fresh.keyframes, shipped.keyframes):
+            assert a.duration_s == pytest.approx(b.duration_s)
+            for wire, target in a.targets.items():
+                assert b.targets[wire].angle_rad == pytest.approx(target.angle_rad, abs=math.radians(0.05)), \
+                    (path.name, a.name, wire)
+
+
+def test_type_4_crouch_has_its_com_over_its_own_soles_where_type_0_angles_would_not():
+    params = load_standup_params()["standup_back"]
+    motion = build_for_type(4)["standup_back"]
+    crouch = {w: t.angle_rad for w, t in motion.phase("crouch").targets.items()}
+    type4, type0 = SagittalSolver(4).kinematics, SagittalSolver(0).kinematics
+    rotation = torso_rotation(math.radians(params.crouch_pitch_deg))
+
+    def com_ahead_of_sole(kinematics, angles):
+        com = rotation @ kinematics.com(angles)
+        sole = rotation @ kinematics.frame_pose("lsole", angles).position_m
+        return float(com[1] - sole[1])
+
+    assert com_ahead_of_sole(type4, crouch) == pytest.approx(params.crouch_com_forward_m, abs=2e-4)
+    type0_crouch = {w: t.angle_rad for w, t in load(FILES_DIR / "standup_back.xml").phase("crouch").targets.items()}
+    # Type 0's angles on type 4: the CoM lies ~1.8 cm further ahead of its (shorter, rearward) foot box.
+    assert com_ahead_of_sole(type4, type0_crouch) - params.crouch_com_forward_m > 0.01
+
+
+def test_type_standups_end_in_the_shared_stand_pose():
+    stand = load(FILES_DIR / "stand.xml").keyframes[-1]
+    for motion in build_for_type(4).values():
+        last = motion.keyframes[-1]
+        for wire, target in last.targets.items():
+            assert target.angle_rad == pytest.approx(stand.targets[wire].angle_rad, abs=math.radians(0.02)), wire
