@@ -3,33 +3,31 @@
 ``KickToward`` reads only the world model (the ball estimate, the self pose from localization) and the
 motion library. Each kick motion says where it wants the ball (its constants ``ball_forward_m`` and
 ``ball_left_m``: the ball centre in the ego frame of the robot standing in the walk stance), so the skill
-knows the spot to stand on for either foot. Lining up, with the motions the library has:
+knows the spot to stand on for either foot. Standing still with a fresh ball sighting, it asks
+``agent.skills.kick_lineup.plan`` for the next move and plays it:
 
-1. far from the spot (more than ``approach_m``): walk to a point behind it on the kick line
-   (``agent.skills.walk.WalkTo``);
-2. near it, standing still and with a fresh ball sighting: turn toward the aim (``turn_left`` /
-   ``turn_right``, one turn motion per correction), then correct sideways and along the kick line, with a
-   walk (``walk_left`` / ``walk_right`` / ``walk_forward`` / ``walk_backward``) while the error exceeds half
-   of what one short walk moves (the walks are cyclic gaits: a single request walks a whole start and stop
-   ramp, 0.12 m sideways and 0.35 m forward on our simulator), then with the kick steps
-   (``kick_step_left`` ... of ``motions.authoring.kick_steps``: 2 cm each);
-3. kick once the ball lies within the kick's tolerance of its spot, or once the corrections are used up and
-   it lies within the loose tolerance; else give up (``done`` with ``kicked`` False).
+1. not facing the aim and far from the ball: turn toward a point behind the ball on the kick line and walk
+   there (a counted number of strides, steered with the walk lean), then turn to the aim;
+2. facing the aim: one walk-in along the kick line, its strides chosen so the ball ends in the middle of
+   the kick's forward window (a walk covers a fixed distance per stride, whenever it is asked to stop);
+3. kick within the window; kick steps (2 cm), sideways or backward walks only for what the walk-in cannot
+   fix, and the loose window when such a slow correction would be needed or the corrections are used up;
+   else give up (``done`` with ``kicked`` False).
 
-Without walk or turn motions in the library the corresponding corrections are skipped (place-and-kick:
-someone else put the robot behind the ball). The foot is the one whose spot is nearer to where the ball
-lies; it is chosen anew before each correction.
+Without walk or turn motions in the library the corresponding moves are skipped (place-and-kick: someone
+else put the robot behind the ball). The foot is the one whose spot is nearer to where the ball lies, chosen
+anew before each move.
 """
 
 from __future__ import annotations
 
 import logging
 import math
-from dataclasses import dataclass
 
 from agent.motion import MotionController, MotionRequest
 from agent.skills.base import Skill
-from agent.skills.walk import WalkTo, report_walk_odometry
+from agent.skills.kick_lineup import KickConfig, Move, Spot, plan
+from agent.skills.walk import report_walk_odometry
 from agent.world.frames import wrap_angle_rad
 from agent.world_model import WorldModel
 
@@ -38,10 +36,9 @@ logger = logging.getLogger(__name__)
 CYCLE_S = 0.02
 KICK, STRONG = "kick", "kick_strong"
 LEFT_SUFFIX = "_left"
-TURN_LEFT, TURN_RIGHT = "turn_left", "turn_right"
-FORWARD, BACKWARD, SIDE_LEFT, SIDE_RIGHT = "walk_forward", "walk_backward", "walk_left", "walk_right"
-STEP_FORWARD, STEP_BACKWARD = "kick_step_forward", "kick_step_backward"
-STEP_LEFT, STEP_RIGHT = "kick_step_left", "kick_step_right"
+TURNS = ("turn_left", "turn_right")
+#: Lean rate limit of the walks this skill steers [1/s] (as ``agent.skills.walk``: a sudden lean can topple).
+LEAN_RATE_PER_S = 2.5
 
 
 def _step_size(motion: MotionController, name: str, key: str) -> float:
@@ -49,53 +46,6 @@ def _step_size(motion: MotionController, name: str, key: str) -> float:
     if name not in motion.library:
         return 0.0
     return abs(float(motion.library.get(name).constants.get(key, 0.0)))
-
-
-@dataclass(frozen=True)
-class KickConfig:
-    """Tolerances and moves of the kick skill (numbers chosen on our simulator; see the kick benchmark)."""
-
-    heading_tol_deg: float = 6.0
-    """Aim error corrected with a turn motion when larger [deg]."""
-    forward_tol_m: float = 0.01
-    """Ball along the kick line off its spot: kick when within [m]."""
-    lateral_tol_m: float = 0.015
-    """Ball across the kick line off its spot: kick when within [m]."""
-    loose_forward_m: float = 0.025
-    """After the corrections are used up, kick if the ball is this close along the line [m]..."""
-    loose_lateral_m: float = 0.03
-    """... and this close across it [m]."""
-    side_step_m: float = 0.12
-    """Sideways displacement of one short sideways walk [m] (measured: walk_left/right, one request)."""
-    forward_step_m: float = 0.35
-    """Forward displacement of one short forward walk [m] (measured: walk_forward, one request)."""
-    backward_step_m: float = 0.30
-    """Backward displacement of one short backward walk [m]."""
-    approach_m: float = 0.45
-    """Beyond this distance from the kick spot the robot walks to a point behind it first [m]."""
-    approach_back_m: float = 0.30
-    """That point lies this far behind the kick spot on the kick line [m]."""
-    max_corrections: int = 12
-    """Corrections near the ball before kicking within the loose tolerance or giving up."""
-    max_approaches: int = 2
-    """Walks to the point behind the spot before the skill corrects with short walks only."""
-    settle_s: float = 0.25
-    """Wait after a move for a ball sighting taken standing still [s]."""
-    max_ball_age_s: float = 3.0
-    """A ball sighting older than this counts as lost [s]."""
-    lost_timeout_s: float = 8.0
-    """Give up after the ball has been lost this long [s]."""
-    head_pitch_deg: float = -45.0
-    """Head pitch while lining up close to the ball [deg] (down: the ball lies at the feet)."""
-
-
-@dataclass(frozen=True)
-class Spot:
-    """Where a kick motion wants the ball: ego (forward, left) [m]."""
-
-    motion: str
-    forward_m: float
-    left_m: float
 
 
 def kick_spots(motion: MotionController, strong: bool) -> list[Spot]:
@@ -147,14 +97,21 @@ class KickToward(Skill):
         self.reason = ""
         self.kick_started_s: float | None = None
         self.corrections = 0
+        self.approaches = 0
+        self.fine_steps = 0
+        self._started_s: float | None = None
+        self.moves: list[str] = []
+        """Kinds and motions of the moves played, in order (for benchmarks and logs)."""
         self._kick_motion: str | None = None
         self._kicks_before = 0
-        self._move: str | None = None
+        self._move: Move | None = None
         self._move_started = False
-        self._move_turn_deg: float | None = None
+        self._cycles = 0
+        self._last_phase: str | None = None
+        self._goal_team: tuple[float, float] | None = None
+        self._heading_team_rad: float | None = None
+        self._lean = 0.0
         self._still_since_s: float | None = None
-        self._walk_to: WalkTo | None = None
-        self._approaches = 0
         self._lost_since_s: float | None = None
         self._unlocalized_since_s: float | None = None
 
@@ -192,6 +149,8 @@ class KickToward(Skill):
     # ---- the cycle ------------------------------------------------------------------------------------
     def step(self, world: WorldModel, motion: MotionController) -> MotionRequest:
         report_walk_odometry(world, motion)
+        if self._started_s is None:
+            self._started_s = world.now_s
         if self.done:
             return self._request(None)
         if self._kick_motion is not None:
@@ -221,107 +180,108 @@ class KickToward(Skill):
         return MotionRequest(None, head_deg=(sweep, -30.0))
 
     def _decide(self, world: WorldModel, motion: MotionController, ball: tuple[float, float]) -> MotionRequest:
-        config = self.config
         spots = kick_spots(motion, self.strong)
-        spot = min(spots, key=lambda s: math.hypot(ball[0] - s.forward_m, ball[1] - s.left_m))
-        self.foot = spot.motion
-        error_f, error_l = ball[0] - spot.forward_m, ball[1] - spot.left_m
         aim_rad = self._aim_error_rad(world, ball)
-        logger.debug("t=%.2f ball (%.3f, %.3f) spot %s error (%+.3f, %+.3f) aim %+.1f deg corrections %d",
-                     world.now_s, ball[0], ball[1], spot.motion, error_f, error_l, math.degrees(aim_rad),
-                     self.corrections)
-        if math.hypot(error_f, error_l) > config.approach_m and self._approaches < config.max_approaches \
-                and FORWARD in motion.library:
-            return self._approach(world, ball, spot, aim_rad)
-        can_correct = self.corrections < config.max_corrections
-        if can_correct and abs(math.degrees(aim_rad)) > config.heading_tol_deg and TURN_LEFT in motion.library \
-                and TURN_RIGHT in motion.library:
-            return self._start_move(TURN_LEFT if aim_rad > 0 else TURN_RIGHT, ball, abs(math.degrees(aim_rad)))
-        within = abs(error_f) <= config.forward_tol_m and abs(error_l) <= config.lateral_tol_m
-        if not within and can_correct:
-            move = self._correction(motion, error_f, error_l)
-            if move is not None:
-                return self._start_move(move, ball)
-        loose = abs(error_f) <= config.loose_forward_m and abs(error_l) <= config.loose_lateral_m
-        if within or loose:
-            self._kick_motion = spot.motion
-            self._kicks_before = motion.completed[spot.motion]
-            self.kick_started_s = world.now_s
-            return self._request(spot.motion, ball)
-        self.done = True
-        self.reason = (f"ball off the kick spot by ({error_f:+.2f}, {error_l:+.2f}) m and no motion left to "
-                       f"correct it")
-        return self._request(None, ball)
-
-    def _correction(self, motion: MotionController, error_f: float, error_l: float) -> str | None:
-        """The move that best reduces the ball's offset from its spot: a walk for an error above half of
-        what the walk moves, else a kick step for an error above the tolerance (sideways first: a sideways
-        miss costs more than one along the line)."""
-        config, library = self.config, motion.library
-        lateral = [(SIDE_LEFT if error_l > 0 else SIDE_RIGHT, config.side_step_m)]
-        lateral.append((STEP_LEFT if error_l > 0 else STEP_RIGHT, _step_size(motion, STEP_LEFT, "step_left_m")))
-        along = [(FORWARD, config.forward_step_m) if error_f > 0 else (BACKWARD, config.backward_step_m)]
-        along.append((STEP_FORWARD, _step_size(motion, STEP_FORWARD, "step_forward_m")) if error_f > 0
-                     else (STEP_BACKWARD, _step_size(motion, STEP_BACKWARD, "step_forward_m")))
-        for error, tolerance, moves in ((abs(error_l), config.lateral_tol_m, lateral),
-                                        (abs(error_f), config.forward_tol_m, along)):
-            if error <= tolerance:
-                continue
-            for name, size in moves:
-                if name in library and size > 0 and error > size / 2:
-                    return name
-        return None
-
-    def _approach(self, world: WorldModel, ball: tuple[float, float], spot: Spot, aim_rad: float) -> MotionRequest:
-        """Walk to a point behind the kick spot on the kick line (team frame through the pose)."""
+        library = set(motion.library.names)
         pose = world.pose
-        if pose is None:  # not localized yet: look up at the landmarks for a while
-            if self._unlocalized_since_s is None:
-                self._unlocalized_since_s = world.now_s
-            if world.now_s - self._unlocalized_since_s > self.config.lost_timeout_s:
-                self.done, self.reason = True, "not localized: cannot walk to the ball"
-            sweep = 60.0 * math.sin((world.now_s - self._unlocalized_since_s) * 1.5)
-            return MotionRequest(None, head_deg=(sweep, 0.0))
-        c, s = math.cos(aim_rad), math.sin(aim_rad)
-        back = spot.forward_m + self.config.approach_back_m
-        # The ego point from which, facing the aim, the ball lies at (back, spot.left_m).
-        fx, fy = ball[0] - (c * back - s * spot.left_m), ball[1] - (s * back + c * spot.left_m)
-        self._approaches += 1
-        self._walk_to = WalkTo(*pose.to_team(fx, fy))
-        self._move = "approach"
+        step_m = _step_size(motion, "kick_step_forward", "step_forward_m")
+        fine_steps = self.fine_steps
+        if self._started_s is not None and world.now_s - self._started_s > self.config.fine_steps_within_s:
+            fine_steps = self.config.max_fine_steps  # too late for precision
+        alignment, move = plan(self.config, ball, aim_rad, spots, library, self.corrections, self.approaches,
+                               fine_steps, pose is not None, step_m)
+        self.foot = alignment.spot.motion
+        logger.debug("t=%.2f ball (%.3f, %.3f) spot %s error (%+.3f, %+.3f) aim %+.1f deg -> %s %s (%s)",
+                     world.now_s, ball[0], ball[1], alignment.spot.motion, alignment.error_f, alignment.error_l,
+                     alignment.aim_deg, move.kind, move.motion, move.why)
+        if move.kind == "approach" and pose is None:  # not localized yet: look up at the landmarks for a while
+            return self._wait_for_pose(world)
+        self._unlocalized_since_s = None
+        if move.kind == "give_up":
+            self.done, self.reason = True, move.why
+            return self._request(None, ball)
+        self.moves.append(f"{move.kind}:{move.motion}" + (f"x{move.strides}" if move.strides
+                                                            else ""))
+        if move.kind == "kick":
+            assert move.motion is not None
+            self._kick_motion = move.motion
+            self._kicks_before = motion.completed[move.motion]
+            self.kick_started_s = world.now_s
+            return self._request(move.motion, ball)
+        if move.fine:
+            self.fine_steps += 1
+        if move.kind == "approach":
+            self.approaches += 1
+            assert pose is not None and move.goal_ego is not None
+            self._goal_team = pose.to_team(*move.goal_ego)
+            self._heading_team_rad = None
+        else:
+            self.corrections += 1
+            self._goal_team = None
+            self._heading_team_rad = None if pose is None else pose.heading_rad + aim_rad
+        self._move, self._move_started, self._cycles, self._last_phase = move, False, 0, None
+        self._lean = 0.0
         self._still_since_s = None
-        return self._request(None, ball)
+        return self._moving(world, motion) or self._request(None, ball)
+
+    def _wait_for_pose(self, world: WorldModel) -> MotionRequest:
+        if self._unlocalized_since_s is None:
+            self._unlocalized_since_s = world.now_s
+        if world.now_s - self._unlocalized_since_s > self.config.lost_timeout_s:
+            self.done, self.reason = True, "not localized: cannot walk to the ball"
+        sweep = 60.0 * math.sin((world.now_s - self._unlocalized_since_s) * 1.5)
+        return MotionRequest(None, head_deg=(sweep, 0.0))
 
     # ---- moves ----------------------------------------------------------------------------------------
-    def _start_move(self, name: str, ball: tuple[float, float], turn_deg: float | None = None) -> MotionRequest:
-        self.corrections += 1
-        self._move, self._move_started, self._move_turn_deg = name, False, turn_deg
-        self._still_since_s = None
-        return self._request(name, ball, turn_deg=turn_deg)
-
     def _moving(self, world: WorldModel, motion: MotionController) -> MotionRequest | None:
-        """The request while a correction is under way (None when there is none or it has ended)."""
-        if self._move is None:
+        """The request while a move is under way (None when there is none or it has ended)."""
+        move = self._move
+        if move is None:
             return None
-        head = (0.0, self.config.head_pitch_deg)
-        if self._move == "approach":
-            walk_to = self._walk_to
-            assert walk_to is not None
-            if not walk_to.done:
-                return walk_to.step(world, motion)
-            if not motion.idle:
-                return MotionRequest(None, head_deg=head)
-        elif not self._move_started:
-            if motion.motion_name != self._move:
-                return MotionRequest(self._move, turn_deg=self._move_turn_deg, head_deg=head)
+        head = (0.0, self.config.head_pitch_deg if move.kind != "approach" else -30.0)
+        if not self._move_started:
+            if motion.motion_name != move.motion:
+                return MotionRequest(move.motion, turn_deg=move.turn_deg, head_deg=head)
             self._move_started = True
-        if self._move in (TURN_LEFT, TURN_RIGHT) and motion.motion_name == self._move:
-            return MotionRequest(self._move, turn_deg=self._move_turn_deg, head_deg=head)
-        if motion.motion_name is not None:  # a walk: asked to stop at once (one short walk), let it finish
+        if motion.motion_name == move.motion:
+            if move.motion in TURNS:
+                return MotionRequest(move.motion, turn_deg=move.turn_deg, head_deg=head)
+            if move.kind in ("walk_in", "approach", "walk_side") and not motion.stopping:
+                return self._striding(world, motion, move, head)
+            # any other walk: asked to stop at once (one short walk); a kick step: let it finish
             return MotionRequest(None, head_deg=head)
-        self._move, self._walk_to = None, None
+        if motion.motion_name is not None:
+            return MotionRequest(None, head_deg=head)
+        self._move = None
         self._still_since_s = None
         return None
+
+    def _striding(self, world: WorldModel, motion: MotionController, move: Move,
+                  head: tuple[float, float]) -> MotionRequest:
+        """A forward walk of ``move.strides`` cycles: walk on, steered by the lean toward the goal point (an
+        approach) or the aim heading (a walk-in), until that many cycles have begun, then stop."""
+        phase = motion.phase_name or ""
+        last = self._last_phase or ""
+        if phase.startswith("cycle") and (not last.startswith("cycle") or phase < last):
+            self._cycles += 1
+        self._last_phase = phase
+        if self._cycles >= move.strides:
+            return MotionRequest(None, head_deg=head)
+        error_deg = 0.0
+        pose = world.pose
+        if pose is not None and self._goal_team is not None:
+            forward, left = pose.to_ego(*self._goal_team)
+            if forward > 0.1:
+                error_deg = math.degrees(math.atan2(left, forward))
+        elif pose is not None and self._heading_team_rad is not None:
+            error_deg = math.degrees(wrap_angle_rad(self._heading_team_rad - pose.heading_rad))
+        config = self.config
+        wanted = max(-config.max_lean, min(config.max_lean, error_deg / config.lean_full_deg * config.max_lean))
+        if not phase.startswith("cycle") or move.motion != "walk_forward":
+            wanted = 0.0  # the lean acts in the cycle phases only; start from 0 there
+        step = LEAN_RATE_PER_S * CYCLE_S
+        self._lean += max(-step, min(step, wanted - self._lean))
+        return MotionRequest(move.motion, lean=self._lean, head_deg=head)
 
     def _kicking(self, world: WorldModel, motion: MotionController) -> MotionRequest:
         name = self._kick_motion

@@ -11,7 +11,7 @@ import pytest
 from agent.motion import default_library
 from agent.skills.kick import KickToward
 from motion_studio.kick_rollout import Placement, ball_spot, run_kick
-from motion_studio.skill_bench.kick import _skill_scenario, skill_run
+from motion_studio.skill_bench.kick import _skill_scenario, challenge_attempt, skill_run
 
 LIMIT_S = 12.0
 
@@ -44,3 +44,32 @@ def test_mirrored_strong_kick_from_its_spot(library, motion):
     assert run.distance_m >= 2.0
     assert abs(run.direction_error_deg) < 20.0
     assert not run.fell
+
+
+def test_kick_toward_from_1m_behind_a_ball_30deg_off_the_aim(library):
+    """The robot faces the ball 1 m ahead; the target lies 30° to the left of that line: it walks round to
+    the kick line (turn, counted strides, turn back), walks in and kicks within 7 s of the skill's start,
+    sending the ball at least 1.5 m toward the target."""
+    ball = (-4.0, 0.0)
+    aim = math.radians(30.0)
+    target = (ball[0] + 10.0 * math.cos(aim), ball[1] + 10.0 * math.sin(aim))
+    scenario = _skill_scenario((-5.0, 0.0), 0.0, seed=5, library=library, ball_m=ball)
+    start_s = scenario.agent.world.now_s
+    skill = KickToward(*target, strong=True)
+    result = skill_run(scenario, skill, ball, target, LIMIT_S)
+    rest = scenario.history[-1].ball_m
+    toward = (rest[0] - ball[0]) * math.cos(aim) + (rest[1] - ball[1]) * math.sin(aim)
+    assert skill.kicked, (skill.reason, skill.moves)
+    assert skill.kick_started_s is not None and skill.kick_started_s - start_s <= 7.0, (skill.moves, result)
+    assert toward >= 1.5, result
+    assert abs(result["direction_error_deg"]) < 20.0, result
+    assert not result["fell"]
+
+
+def test_kick_challenge_attempt_kicks_in_time(library):
+    """A kick-challenge attempt (REFERENCE §8.2: robot 1 m behind the ball, facing it and the aim (0, 0)):
+    the ball leaves the 2 m circle and stops before the 7 s limit, the robot stays up."""
+    attempt = challenge_attempt(5.0, -20.0, True, seed=2, library=library)
+    assert attempt["end"] == "ball stopped outside the circle", attempt
+    assert attempt["kicked"] and not attempt["fell"], attempt
+    assert attempt["moved_m"] >= 2.0 and attempt["score_m"] < 3.5, attempt

@@ -1,0 +1,358 @@
+"""Lining up for a kick: where the ball lies against the kick spot, and the one move that brings it there
+fastest (pure: values in, a move out; ``agent.skills.kick.KickToward`` plays the moves).
+
+Measured on our simulator (the walk benchmark's gait, the kick benchmark's kicks), the moves are coarse:
+
+* a forward walk covers a fixed distance per cycle begun: stopped in (or before) its first cycle it still
+  walks 0.33 m (start ramp, one cycle, stop ramp), 0.44 m in its second, and each further cycle adds
+  0.118 m, whatever the moment of the stop request within the cycle; so a walk-in is planned as a count of
+  cycles ("strides"), the one that leaves the ball nearest to the middle of the kick's forward window;
+* a sideways walk moves at least 0.27 m, a backward walk at least 0.30 m (2.1-2.4 s each);
+* a kick step moves 2 cm in 2.5 s; a turn motion turns up to about 40° in 0.7 s;
+* the kick itself is forgiving along its line (the ball 1.5 cm nearer to 9 cm farther than its spot
+  still flies 1.9-3.5 m within about 11°) and less so across it and in heading (the ball follows the
+  robot's heading error almost one to one).
+
+Hence the order: face the aim (turn, or walk to a point behind the ball on the kick line first when the
+ball is far), then one walk-in of the planned strides along the kick line, then kick; kick steps and
+sideways or backward walks only for what the walk-in cannot fix, and the loose window when a correction
+would cost more than it gains.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+TURN_LEFT, TURN_RIGHT = "turn_left", "turn_right"
+FORWARD, BACKWARD, SIDE_LEFT, SIDE_RIGHT = "walk_forward", "walk_backward", "walk_left", "walk_right"
+STEP_FORWARD, STEP_BACKWARD = "kick_step_forward", "kick_step_backward"
+STEP_LEFT, STEP_RIGHT = "kick_step_left", "kick_step_right"
+#: What a kick step moves (``motions.authoring.kick_steps``) [m]; planning only needs it roughly.
+KICK_STEP_M = 0.02
+
+
+@dataclass(frozen=True)
+class KickConfig:
+    """Tolerances and move sizes of the kick skill (numbers measured on our simulator; see the module
+    docstring and the kick benchmark)."""
+
+    heading_tol_deg: float = 5.0
+    """Aim error corrected with a turn motion when larger [deg] (the ball's direction error follows it one
+    to one; the smallest turn motion turns 2°)."""
+    forward_min_m: float = -0.01
+    """Kick window along the kick line: the ball at least this far beyond its spot [m] (nearer, the stance
+    toes reach under the ball)..."""
+    forward_max_m: float = 0.015
+    """... and at most this far [m] (the walk-in aims at the window's middle; the kick flies 2.6-3.4 m
+    from within 1 cm of its spot, 1.9-2.6 m from 1-5 cm beyond)."""
+    lateral_in_m: float = 0.03
+    """Ball across the kick line off its spot toward the robot's middle: kick when within [m] (4 cm in
+    still flies 1.9-3 m within 8°)..."""
+    lateral_out_m: float = 0.015
+    """... and away from it [m] (4 cm out sends the ball 12-35° off: the foot meets it off centre)."""
+    loose_forward_min_m: float = -0.03
+    """Loose window, taken when the correction would be a slow one (kick steps, sideways or backward walks)
+    or the corrections are used up: along the line from [m]..."""
+    loose_forward_max_m: float = 0.09
+    """... to [m] (the kick still flies about 2 m, 11° off, from there)..."""
+    loose_lateral_in_m: float = 0.04
+    """... and across it within this toward the middle [m]..."""
+    loose_lateral_out_m: float = 0.022
+    """... and this away from it [m]."""
+    walk_in_first_m: float = 0.333
+    """Distance of a forward walk stopped in its first cycle (or before it: the start ramp has no exit) [m]
+    (measured 0.330-0.337)..."""
+    walk_in_second_m: float = 0.441
+    """... in its second cycle [m] (measured 0.441-0.448)..."""
+    stride_m: float = 0.118
+    """... and what each further cycle adds [m] (measured 0.56, 0.675, 0.80 m for 3-5 cycles)."""
+    side_walk_m: float = 0.27
+    """Sideways walk stopped in its first cycle [m] (measured 0.27)..."""
+    side_stride_m: float = 0.089
+    """... and what each further cycle adds [m] (measured 0.357, 0.448, 0.536 m for 2-4 cycles)."""
+    backward_walk_m: float = 0.30
+    """Smallest backward walk [m] (measured 0.30; two cycles 0.40)."""
+    lateral_walk_in_m: float = 0.06
+    """A sideways offset up to this is left to the walk-in and the kick steps; a larger one (below the
+    sideways walk's reach) is walked round: turn toward a point on the kick line, walk, turn back [m]."""
+    approach_back_m: float = 0.47
+    """Walking to the ball from afar ends this far behind the kick pose on the kick line [m]: one stride of
+    walk-in plus the window's middle, so that an approach off by half a stride still leaves a walk-in."""
+    approach_far_m: float = 0.6
+    """Not facing the aim, the robot walks to the approach point first when the kick pose is farther than
+    this [m] (nearer, it turns in place and walks in)."""
+    wrong_side_m: float = 0.05
+    """Not facing the aim with the kick pose this far behind the robot, it walks round [m]."""
+    approach_min_m: float = 0.25
+    """An approach point nearer than this is not walked to; the robot turns to the aim where it is [m]."""
+    approach_turn_deg: float = 12.0
+    """Before walking to the approach point the robot turns toward it if its bearing is larger [deg]."""
+    ball_clearance_m: float = 0.25
+    """A walk to the approach point passing nearer than this to the ball goes round it [m]."""
+    max_lean: float = 0.4
+    """Largest walk lean while walking to a point or along the kick line (a full lean toppled walks)."""
+    lean_full_deg: float = 15.0
+    """Heading error asking for the full lean (``max_lean``) [deg]."""
+    max_fine_steps: int = 1
+    """Kick steps taken to bring a ball already in the loose window into the window (2.5 s each)..."""
+    fine_steps_within_s: float = 4.0
+    """... only this long after the skill's start [s]: later the loose window is kicked at once (in a
+    match or the kick challenge a kick now beats a better one 2.5 s later)."""
+    max_corrections: int = 10
+    """Moves near the ball before kicking within the loose window or giving up."""
+    max_approaches: int = 3
+    """Walks to an approach point; then only turns and the near-ball moves."""
+    settle_s: float = 0.1
+    """Wait after a move for a ball sighting taken standing still [s] (a walk ends with 0.2 s on the spot
+    already; the camera sees every 3rd cycle)."""
+    max_ball_age_s: float = 3.0
+    """A ball sighting older than this counts as lost [s]."""
+    lost_timeout_s: float = 8.0
+    """Give up after the ball has been lost this long [s]."""
+    head_pitch_deg: float = -45.0
+    """Head pitch while lining up close to the ball [deg] (down: the ball lies at the feet)."""
+
+    def walk_in_m(self, strides: int) -> float:
+        """Distance of a forward walk stopped in its ``strides``-th cycle (>= 1) [m]."""
+        if strides <= 1:
+            return self.walk_in_first_m
+        return self.walk_in_second_m + (strides - 2) * self.stride_m
+
+    @property
+    def window_middle_m(self) -> float:
+        return (self.forward_min_m + self.forward_max_m) / 2
+
+
+@dataclass(frozen=True)
+class Spot:
+    """Where a kick motion wants the ball: ego (forward, left) [m]."""
+
+    motion: str
+    forward_m: float
+    left_m: float
+
+
+@dataclass(frozen=True)
+class Alignment:
+    """The ball against a spot, in the aim frame (x along the aim from the torso, y to its left)."""
+
+    spot: Spot
+    error_f: float
+    """Ball beyond its spot along the kick line [m] (+ = too far ahead: walk in)."""
+    error_l: float
+    """Ball left of its spot across the kick line [m]."""
+    aim_rad: float
+    """Heading change that faces the aim [rad]."""
+
+    @property
+    def aim_deg(self) -> float:
+        return math.degrees(self.aim_rad)
+
+
+def align(ball: tuple[float, float], aim_rad: float, spots: list[Spot], config: KickConfig) -> Alignment:
+    """The spot (foot) that suits the ball best seen from the kick pose, and the ball's offset from it.
+
+    The offset is also where the kick pose lies: standing (error_f, error_l) further along the aim frame
+    and facing the aim puts the ball on the spot.
+    """
+    c, s = math.cos(aim_rad), math.sin(aim_rad)
+    along, across = c * ball[0] + s * ball[1], -s * ball[0] + c * ball[1]
+
+    def misfit(spot: Spot) -> float:
+        error_l = across - spot.left_m
+        return (abs(error_l) / _lateral_limit(config, spot, error_l, loose=False)
+                + abs(along - spot.forward_m - config.window_middle_m) / config.stride_m)
+
+    spot = min(spots, key=misfit)
+    return Alignment(spot, along - spot.forward_m, across - spot.left_m, aim_rad)
+
+
+def _lateral_limit(config: KickConfig, spot: Spot, error_l: float, loose: bool) -> float:
+    """The lateral tolerance on the side the ball lies off its spot: outward = away from the robot's
+    middle, the side of the spot itself."""
+    outward = error_l * spot.left_m > 0
+    if loose:
+        return config.loose_lateral_out_m if outward else config.loose_lateral_in_m
+    return config.lateral_out_m if outward else config.lateral_in_m
+
+
+def to_ego(point: tuple[float, float], aim_rad: float) -> tuple[float, float]:
+    """An aim-frame point in the ego frame."""
+    c, s = math.cos(aim_rad), math.sin(aim_rad)
+    return c * point[0] - s * point[1], s * point[0] + c * point[1]
+
+
+@dataclass(frozen=True)
+class Move:
+    """One move of the line-up.
+
+    ``kind``: ``kick`` (play ``motion``), ``turn`` (``motion`` by ``turn_deg``), ``walk_in`` (forward walk of
+    ``strides`` holding the aim), ``approach`` (forward walk of ``strides`` toward ``goal_ego``),
+    ``walk_side`` (sideways walk ``motion`` of ``strides``), ``move``
+    (one short request of a walk or a kick step), ``give_up``.
+    """
+
+    kind: str
+    motion: str | None = None
+    turn_deg: float | None = None
+    strides: int = 0
+    goal_ego: tuple[float, float] | None = None
+    fine: bool = False
+    """A kick step taken from within the loose window (counted against ``max_fine_steps``)."""
+    why: str = ""
+
+
+def strides_for(config: KickConfig, distance_m: float) -> tuple[int, float]:
+    """Forward-walk strides that leave the ball nearest to the window's middle, and the ball's predicted
+    offset from its spot after them [m] (distance_m: the ball's offset now)."""
+    middle = config.window_middle_m
+    guess = max(2, 2 + round((distance_m - middle - config.walk_in_second_m) / config.stride_m))
+    strides = min((n for n in (guess - 1, guess, guess + 1) if n >= 1),
+                  key=lambda n: abs(distance_m - config.walk_in_m(n) - middle))
+    return strides, distance_m - config.walk_in_m(strides)
+
+
+def _in_window(config: KickConfig, a: Alignment, loose: bool) -> bool:
+    lateral = abs(a.error_l) <= _lateral_limit(config, a.spot, a.error_l, loose)
+    if loose:
+        return config.loose_forward_min_m <= a.error_f <= config.loose_forward_max_m and lateral
+    return config.forward_min_m <= a.error_f <= config.forward_max_m and lateral
+
+
+def _approach_goal(config: KickConfig, ball: tuple[float, float], a: Alignment) -> tuple[float, float]:
+    """The ego point ``approach_back_m`` behind the kick pose on the kick line, or a point beside the ball
+    first when the straight walk there would pass over the ball."""
+    goal = to_ego((a.error_f - config.approach_back_m, a.error_l), a.aim_rad)
+    length = math.hypot(*goal)
+    if length < 1e-6:
+        return goal
+    # Distance of the ball from the segment torso -> goal.
+    t = max(0.0, min(1.0, (ball[0] * goal[0] + ball[1] * goal[1]) / length ** 2))
+    gap = math.hypot(ball[0] - t * goal[0], ball[1] - t * goal[1])
+    if gap >= config.ball_clearance_m or t <= 0.0 or t >= 1.0:
+        return goal
+    # Round the ball on the side the path already leans to: a point abeam the ball, clearance + margin away.
+    side = 1.0 if (goal[0] * ball[1] - goal[1] * ball[0]) < 0 else -1.0
+    ux, uy = goal[0] / length, goal[1] / length
+    offset = config.ball_clearance_m + 0.1
+    return ball[0] - side * uy * offset, ball[1] + side * ux * offset
+
+
+def plan(config: KickConfig, ball: tuple[float, float], aim_rad: float, spots: list[Spot],
+         motions: frozenset[str] | set[str], corrections: int, approaches: int, fine_steps: int, localized: bool,
+         step_m: float = KICK_STEP_M) -> tuple[Alignment, Move]:
+    """The next move for a standing robot.
+
+    Args:
+        ball: the ball in the ego frame [m] (a sighting taken standing still).
+        aim_rad: heading change that faces the aim (0 when not localized).
+        spots: the kick motions' ball spots (see ``agent.skills.kick.kick_spots``).
+        motions: names in the motion library (missing moves are skipped: place-and-kick).
+        corrections: moves made so far near the ball; approaches: walks to an approach point so far;
+        fine_steps: kick steps taken from within the loose window so far.
+        localized: a self pose exists (approaches steer by it).
+        step_m: what one kick step moves [m].
+    """
+    can_turn = TURN_LEFT in motions and TURN_RIGHT in motions
+    # Without turn motions the kick goes where the robot faces: line up along the heading.
+    a = align(ball, aim_rad if can_turn else 0.0, spots, config)
+    can_correct = corrections < config.max_corrections
+    heading_ok = abs(a.aim_deg) <= config.heading_tol_deg
+    kick = Move("kick", a.spot.motion, why="in the window")
+    if heading_ok and _in_window(config, a, loose=False):
+        return a, kick
+    if not can_correct:
+        if heading_ok and _in_window(config, a, loose=True):
+            return a, Move("kick", a.spot.motion, why="corrections used up, in the loose window")
+        return a, Move("give_up", why=f"ball off the kick spot by ({a.error_f:+.2f}, {a.error_l:+.2f}) m, "
+                                        f"aim {a.aim_deg:+.0f} deg, and no correction left")
+    walk = FORWARD in motions
+    if not heading_ok:
+        # Far from the kick pose, or on the wrong side of the ball: walk to the approach point first; near
+        # it, turn where the robot stands (the walk-in or the fine moves take the rest).
+        goal = _approach_goal(config, ball, a)
+        far = (math.hypot(a.error_f, a.error_l) > config.approach_far_m or a.error_f < -config.wrong_side_m
+               or abs(a.error_l) > config.lateral_walk_in_m)
+        if (far and walk and localized and approaches < config.max_approaches
+                and math.hypot(*goal) > config.approach_min_m):
+            return a, _toward(config, goal, can_turn)
+        return a, Move("turn", TURN_LEFT if a.aim_rad > 0 else TURN_RIGHT, turn_deg=abs(a.aim_deg), why="face the aim")
+    # Facing the aim: a large sideways offset first (walk sideways, or round to the kick line), then the
+    # walk-in along the line, then the fine moves for what is left (or the loose window, if they are slow).
+    goal = _approach_goal(config, ball, a)
+    can_approach = (walk and localized and approaches < config.max_approaches
+                    and math.hypot(*goal) > config.approach_min_m)
+    side = SIDE_LEFT if a.error_l > 0 else SIDE_RIGHT
+    if abs(a.error_l) >= config.side_walk_m - config.side_stride_m / 2 and side in motions:
+        strides = _side_strides(config, abs(a.error_l))
+        return a, Move("walk_side", side, strides=strides, why="sideways walk")
+    wide = abs(a.error_l) > config.lateral_walk_in_m
+    if wide and can_approach and a.error_f > config.approach_back_m:
+        return a, _toward(config, goal, can_turn)
+    if a.error_f > config.forward_max_m and walk and not wide:
+        strides, after = strides_for(config, a.error_f)
+        if after >= config.loose_forward_min_m:
+            return a, Move("walk_in", FORWARD, strides=strides, why=f"walk in, {after:+.3f} m after")
+    if fine_steps < config.max_fine_steps:
+        fine = _fine_step(config, a, motions, step_m)
+        if fine is not None:
+            return a, fine
+    if _in_window(config, a, loose=True):
+        return a, Move("kick", a.spot.motion, why="loose window (the fine moves cost 2.5 s each)")
+    # Outside the loose window, near the ball: kick steps for a few centimetres, else back off to make room
+    # for a walk-in or an approach.
+    if wide and can_approach and BACKWARD in motions:
+        return a, Move("move", BACKWARD, why="back off to walk round to the kick line")
+    lateral_bad = abs(a.error_l) > _lateral_limit(config, a.spot, a.error_l, loose=False)
+    step = STEP_LEFT if a.error_l > 0 else STEP_RIGHT
+    if lateral_bad and a.error_f >= 0.0 and step in motions:
+        return a, Move("move", step, why="kick step across")
+    if a.error_f > config.forward_max_m:
+        if a.error_f - config.forward_max_m <= 2 * step_m and STEP_FORWARD in motions:
+            return a, Move("move", STEP_FORWARD, why="kick step forward")
+        if BACKWARD in motions:
+            return a, Move("move", BACKWARD, why="back off for a walk-in")
+    elif a.error_f < config.forward_min_m or lateral_bad:
+        if a.error_f >= config.forward_min_m - 2 * step_m and STEP_BACKWARD in motions:
+            return a, Move("move", STEP_BACKWARD, why="kick step back (ball at the toes)")
+        if BACKWARD in motions:
+            return a, Move("move", BACKWARD, why="back off")
+    return a, Move("give_up", why=f"ball off the kick spot by ({a.error_f:+.2f}, {a.error_l:+.2f}) m and no motion "
+                                  f"left to correct it")
+
+
+def _side_strides(config: KickConfig, distance_m: float) -> int:
+    """Sideways-walk cycles whose walk comes nearest to ``distance_m``."""
+    return max(1, 1 + round((distance_m - config.side_walk_m) / config.side_stride_m))
+
+
+def _fine_step(config: KickConfig, a: Alignment, motions: frozenset[str] | set[str], step_m: float) -> Move | None:
+    """One kick step that puts the ball into the (strict) window, if there is one: along the line, or
+    across it with the ball clear of the toes (nearer, a sideways step pushed the ball away)."""
+    if step_m <= 0.0:
+        return None
+    along_ok = config.forward_min_m <= a.error_f <= config.forward_max_m
+    across_ok = abs(a.error_l) <= _lateral_limit(config, a.spot, a.error_l, loose=False)
+    if across_ok and not along_ok:
+        name, after = (STEP_FORWARD, a.error_f - step_m) if a.error_f > 0 else (STEP_BACKWARD, a.error_f + step_m)
+        if config.forward_min_m <= after <= config.forward_max_m and name in motions:
+            return Move("move", name, fine=True, why="one kick step into the window")
+    if along_ok and not across_ok and a.error_f >= 0.0:
+        name, after = (STEP_LEFT, a.error_l - step_m) if a.error_l > 0 else (STEP_RIGHT, a.error_l + step_m)
+        if abs(after) <= _lateral_limit(config, a.spot, after, loose=False) and name in motions:
+            return Move("move", name, fine=True, why="one kick step into the window")
+    return None
+
+
+def _toward(config: KickConfig, goal: tuple[float, float], can_turn: bool) -> Move:
+    """Turn toward an approach point, or walk there when it lies ahead."""
+    bearing = math.degrees(math.atan2(goal[1], goal[0]))
+    if can_turn and abs(bearing) > config.approach_turn_deg:
+        return Move("turn", TURN_LEFT if bearing > 0 else TURN_RIGHT, turn_deg=abs(bearing),
+                    why="face the approach point")
+    strides, _ = strides_for(config, math.hypot(*goal) + config.window_middle_m)
+    return Move("approach", FORWARD, strides=strides, goal_ego=goal, why="walk to the approach point")
+
+
+__all__ = ["Alignment", "KickConfig", "Move", "Spot", "align", "plan", "strides_for", "to_ego"]

@@ -1,0 +1,102 @@
+"""The kick line-up planner (agent.skills.kick_lineup.plan): one move per standing decision, from the ball's
+ego position, the aim and the library's motions."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from agent.skills.kick_lineup import KickConfig, Spot, align, plan, strides_for
+
+CONFIG = KickConfig()
+SPOTS = [Spot("kick", 0.118, 0.021), Spot("kick_left", 0.118, -0.021)]
+ALL = frozenset({"kick", "kick_left", "walk_forward", "walk_backward", "walk_left", "walk_right", "turn_left",
+                 "turn_right", "kick_step_forward", "kick_step_backward", "kick_step_left", "kick_step_right"})
+
+
+def decide(ball, aim_deg=0.0, motions=ALL, corrections=0, approaches=0, fine_steps=0, localized=True):
+    return plan(CONFIG, ball, math.radians(aim_deg), SPOTS, motions, corrections, approaches, fine_steps,
+                localized)[1]
+
+
+def test_walk_in_distances_follow_the_measured_cycles():
+    assert CONFIG.walk_in_m(1) == pytest.approx(0.333)
+    assert CONFIG.walk_in_m(2) == pytest.approx(0.441)
+    assert CONFIG.walk_in_m(4) == pytest.approx(0.677)
+
+
+@pytest.mark.parametrize("distance_m", [0.34, 0.45, 0.6, 0.85, 1.3])
+def test_strides_leave_the_ball_nearest_to_the_window_middle(distance_m):
+    strides, after = strides_for(CONFIG, distance_m)
+    assert after == pytest.approx(distance_m - CONFIG.walk_in_m(strides))
+    for other in range(1, 12):
+        assert abs(after - CONFIG.window_middle_m) <= abs(distance_m - CONFIG.walk_in_m(other)
+                                                           - CONFIG.window_middle_m) + 1e-9
+
+
+def test_ball_on_its_spot_facing_the_aim_kicks_with_that_foot():
+    move = decide((0.12, -0.02))
+    assert (move.kind, move.motion) == ("kick", "kick_left")
+
+
+def test_ball_1m_ahead_on_the_kick_line_walks_in_without_stopping_first():
+    """The kick challenge's start: one walk-in of counted strides, no turn, no side step."""
+    move = decide((0.97, 0.0))
+    assert move.kind == "walk_in" and move.motion == "walk_forward"
+    after = 0.97 - 0.118 - CONFIG.walk_in_m(move.strides)
+    assert CONFIG.loose_forward_min_m <= after <= CONFIG.loose_forward_max_m
+
+
+def test_far_ball_off_the_aim_goes_to_the_approach_point_first():
+    """Ball 1 m ahead, aim 30° to the left: the approach point lies behind the ball on the kick line, to the
+    right; the robot turns toward it (right) rather than to the aim (left)."""
+    move = decide((0.97, 0.0), aim_deg=30.0)
+    assert (move.kind, move.motion) == ("turn", "turn_right")
+    move = decide((0.8, 0.45), aim_deg=58.0)  # facing the approach point now
+    assert move.kind == "approach" and move.strides >= 1 and move.goal_ego is not None
+
+
+def test_approach_goes_round_a_ball_in_the_way():
+    """Robot in front of the ball, aim behind the robot: the walk to the kick line must not cross the ball."""
+    ball = (0.2, 0.0)
+    alignment, move = plan(CONFIG, ball, math.radians(180.0), SPOTS, ALL, 0, 0, 0, True)
+    assert move.kind in ("turn", "approach")
+    a = align(ball, math.radians(180.0), SPOTS, CONFIG)
+    assert a.error_f < 0  # the kick pose lies behind the ball, seen along the aim
+
+
+def test_small_heading_error_at_the_ball_turns_in_place():
+    move = decide((0.12, 0.02), aim_deg=8.0)
+    assert (move.kind, move.motion) == ("turn", "turn_left")
+    assert move.turn_deg == pytest.approx(8.0)
+
+
+def test_ball_in_the_loose_window_late_is_kicked_at_once_not_stepped():
+    ball = (0.118 + 0.03, 0.021)
+    assert decide(ball).kind == "move" and decide(ball).fine  # one kick step first while there is time
+    move = decide(ball, fine_steps=CONFIG.max_fine_steps)
+    assert move.kind == "kick"
+
+
+def test_large_sideways_offset_walks_sideways_by_counted_strides():
+    move = decide((0.4, 0.45))
+    assert (move.kind, move.motion) == ("walk_side", "walk_left")
+    assert move.strides == 3
+
+
+def test_place_and_kick_without_walks_or_turns():
+    kicks_only = frozenset({"kick", "kick_left"})
+    assert decide((0.14, -0.02), aim_deg=20.0, motions=kicks_only).kind == "kick"  # cannot turn: heading ignored
+    move = decide((0.5, 0.0), motions=kicks_only)
+    assert move.kind == "give_up" and "no motion" in move.why
+
+
+def test_not_localized_never_approaches():
+    move = decide((1.5, 0.8), aim_deg=40.0, localized=False)
+    assert move.kind == "turn"
+
+
+def test_corrections_used_up_kick_in_the_loose_window_or_give_up():
+    assert decide((0.118 + 0.06, 0.0), corrections=CONFIG.max_corrections).kind == "kick"
+    assert decide((0.4, 0.2), corrections=CONFIG.max_corrections).kind == "give_up"
