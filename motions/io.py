@@ -56,6 +56,8 @@ def loads(text: str, format: str | None = None, *, path: str = "<string>", name:
     Raises:
         MotionFormatError: the text breaks its format (with path, line and field).
     """
+    # Editors on Windows start UTF-8 files with a byte-order mark; it is no part of either format.
+    text = text.removeprefix("\ufeff")
     chosen = _check_format(format) if format is not None else detect_format(text, path)
     if chosen == XML:
         return loads_xml(text, path)
