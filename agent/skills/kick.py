@@ -118,17 +118,18 @@ class KickToward(Skill):
     # ---- perception -----------------------------------------------------------------------------------
     def _ball_ego(self, world: WorldModel) -> tuple[float, float] | None:
         """The ball in the ego frame: the sighting itself when taken while standing still, else through
-        the current pose (the robot may have moved since)."""
+        the current pose (the robot may have moved since; a ball out of view is remembered a while)."""
         ball = world.ball
-        if ball is None or ball.age_s(world.now_s) > self.config.max_ball_age_s:
+        if ball is None:
             return None
+        age = ball.age_s(world.now_s)
         still = self._still_since_s
         if ball.forward_m is not None and still is not None and ball.seen_s >= still:
             return ball.forward_m, ball.left_m  # type: ignore[return-value]
         pose = world.pose
-        if pose is not None and ball.position is not None:
+        if pose is not None and ball.position is not None and age <= self.config.remembered_ball_s:
             return pose.to_ego(*ball.position)
-        if ball.forward_m is not None:
+        if ball.forward_m is not None and age <= self.config.max_ball_age_s:
             return ball.forward_m, ball.left_m  # type: ignore[return-value]
         return None
 
@@ -142,9 +143,13 @@ class KickToward(Skill):
         return wrap_angle_rad(aim - pose.heading_rad)
 
     def _request(self, name: str | None, ball: tuple[float, float] | None = None, **fields: object) -> MotionRequest:
-        pitch = self.config.head_pitch_deg if ball is None or math.hypot(*ball) < 0.6 else -25.0
-        yaw = 0.0 if ball is None or math.hypot(*ball) < 0.6 else max(-60.0, min(60.0, math.degrees(math.atan2(ball[1], ball[0]))))
-        return MotionRequest(name, head_deg=(yaw, pitch), **fields)  # type: ignore[arg-type]
+        return MotionRequest(name, head_deg=self._head(ball), **fields)  # type: ignore[arg-type]
+
+    def _head(self, ball: tuple[float, float] | None) -> tuple[float, float]:
+        """Head (yaw, pitch) [deg]: toward the ball, down at the feet when it is near."""
+        if ball is None or math.hypot(*ball) < 0.6:
+            return 0.0, self.config.head_pitch_deg
+        return max(-60.0, min(60.0, math.degrees(math.atan2(ball[1], ball[0])))), -25.0
 
     # ---- the cycle ------------------------------------------------------------------------------------
     def step(self, world: WorldModel, motion: MotionController) -> MotionRequest:
@@ -238,7 +243,7 @@ class KickToward(Skill):
         move = self._move
         if move is None:
             return None
-        head = (0.0, self.config.head_pitch_deg if move.kind != "approach" else -30.0)
+        head = self._head(self._ball_ego(world))
         if not self._move_started:
             if motion.motion_name != move.motion:
                 return MotionRequest(move.motion, turn_deg=move.turn_deg, head_deg=head)
@@ -246,7 +251,7 @@ class KickToward(Skill):
         if motion.motion_name == move.motion:
             if move.motion in TURNS:
                 return MotionRequest(move.motion, turn_deg=move.turn_deg, head_deg=head)
-            if move.kind in ("walk_in", "approach", "walk_side") and not motion.stopping:
+            if move.strides and not motion.stopping:
                 return self._striding(world, motion, move, head)
             # any other walk: asked to stop at once (one short walk); a kick step: let it finish
             return MotionRequest(None, head_deg=head)

@@ -60,6 +60,11 @@ class KickConfig:
     """... and across it within this toward the middle [m]..."""
     loose_lateral_out_m: float = 0.022
     """... and this away from it [m]."""
+    walk_in_target_m: float = 0.015
+    """A walk-in aims to leave the ball this far beyond its spot [m]..."""
+    walk_in_min_after_m: float = -0.005
+    """... and never nearer than this (the swinging foot of the last step reaches further than the stance
+    toes: a walk-in planned to end 1.8 cm nearer pushed the ball 6 cm away) [m]."""
     walk_in_first_m: float = 0.333
     """Distance of a forward walk stopped in its first cycle (or before it: the start ramp has no exit) [m]
     (measured 0.330-0.337)..."""
@@ -72,7 +77,9 @@ class KickConfig:
     side_stride_m: float = 0.089
     """... and what each further cycle adds [m] (measured 0.357, 0.448, 0.536 m for 2-4 cycles)."""
     backward_walk_m: float = 0.30
-    """Smallest backward walk [m] (measured 0.30; two cycles 0.40)."""
+    """Backward walk stopped in its first cycle [m] (measured 0.30)..."""
+    backward_stride_m: float = 0.096
+    """... and what each further backward cycle adds [m] (measured 0.40, 0.50, 0.59 m for 2-4 cycles)."""
     lateral_walk_in_m: float = 0.06
     """A sideways offset up to this is left to the walk-in and the kick steps; a larger one (below the
     sideways walk's reach) is walked round: turn toward a point on the kick line, walk, turn back [m]."""
@@ -84,6 +91,16 @@ class KickConfig:
     this [m] (nearer, it turns in place and walks in)."""
     wrong_side_m: float = 0.05
     """Not facing the aim with the kick pose this far behind the robot, it walks round [m]."""
+    turn_near_deg: float = 25.0
+    """An aim error larger than this is not turned out with the ball at the feet, nor walked round from
+    there: the robot backs off to ``room_m`` first [deg]..."""
+    ball_near_m: float = 0.35
+    """... when the ball lies nearer than this [m]."""
+    room_m: float = 0.6
+    """Backing off ends with the kick pose at least this far ahead [m]..."""
+    behind_m: float = 0.3
+    """... unless the kick pose lies more than this behind the robot (the robot stands on the far side of
+    the ball: backing off does not help, it walks round the ball) [m]."""
     approach_min_m: float = 0.25
     """An approach point nearer than this is not walked to; the robot turns to the aim where it is [m]."""
     approach_turn_deg: float = 12.0
@@ -107,7 +124,10 @@ class KickConfig:
     """Wait after a move for a ball sighting taken standing still [s] (a walk ends with 0.2 s on the spot
     already; the camera sees every 3rd cycle)."""
     max_ball_age_s: float = 3.0
-    """A ball sighting older than this counts as lost [s]."""
+    """A ball sighting older than this counts as lost [s]..."""
+    remembered_ball_s: float = 10.0
+    """... unless localized: then the ball's field position is trusted this long (turning and walking round
+    the ball, the camera loses it for seconds) [s]."""
     lost_timeout_s: float = 8.0
     """Give up after the ball has been lost this long [s]."""
     head_pitch_deg: float = -45.0
@@ -204,12 +224,14 @@ class Move:
 
 
 def strides_for(config: KickConfig, distance_m: float) -> tuple[int, float]:
-    """Forward-walk strides that leave the ball nearest to the window's middle, and the ball's predicted
-    offset from its spot after them [m] (distance_m: the ball's offset now)."""
-    middle = config.window_middle_m
-    guess = max(2, 2 + round((distance_m - middle - config.walk_in_second_m) / config.stride_m))
-    strides = min((n for n in (guess - 1, guess, guess + 1) if n >= 1),
-                  key=lambda n: abs(distance_m - config.walk_in_m(n) - middle))
+    """Forward-walk strides that leave the ball nearest to ``walk_in_target_m`` without ending nearer than
+    ``walk_in_min_after_m``, and the ball's predicted offset from its spot after them [m] (distance_m: the
+    ball's offset now)."""
+    target = config.walk_in_target_m
+    guess = max(2, 2 + round((distance_m - target - config.walk_in_second_m) / config.stride_m))
+    options = [n for n in (guess - 1, guess, guess + 1) if n >= 1]
+    clear = [n for n in options if distance_m - config.walk_in_m(n) >= config.walk_in_min_after_m] or [1]
+    strides = min(clear, key=lambda n: abs(distance_m - config.walk_in_m(n) - target))
     return strides, distance_m - config.walk_in_m(strides)
 
 
@@ -271,6 +293,11 @@ def plan(config: KickConfig, ball: tuple[float, float], aim_rad: float, spots: l
     if not heading_ok:
         # Far from the kick pose, or on the wrong side of the ball: walk to the approach point first; near
         # it, turn where the robot stands (the walk-in or the fine moves take the rest).
+        if (abs(a.aim_deg) > config.turn_near_deg and math.hypot(*ball) < config.ball_near_m
+                and BACKWARD in motions and -config.behind_m <= a.error_f < config.room_m):
+            # Ball at the feet and far off the aim: a turn here or a walk round would kick it; room first.
+            return a, Move("walk_back", BACKWARD, strides=_back_strides(config, config.room_m - a.error_f),
+                           why="back off to walk round to the kick line")
         goal = _approach_goal(config, ball, a)
         far = (math.hypot(a.error_f, a.error_l) > config.approach_far_m or a.error_f < -config.wrong_side_m
                or abs(a.error_l) > config.lateral_walk_in_m)
@@ -322,6 +349,11 @@ def plan(config: KickConfig, ball: tuple[float, float], aim_rad: float, spots: l
                                   f"left to correct it")
 
 
+def _back_strides(config: KickConfig, distance_m: float) -> int:
+    """Backward-walk cycles that cover at least ``distance_m``."""
+    return max(1, 1 + math.ceil((distance_m - config.backward_walk_m) / config.backward_stride_m - 1e-9))
+
+
 def _side_strides(config: KickConfig, distance_m: float) -> int:
     """Sideways-walk cycles whose walk comes nearest to ``distance_m``."""
     return max(1, 1 + round((distance_m - config.side_walk_m) / config.side_stride_m))
@@ -351,7 +383,8 @@ def _toward(config: KickConfig, goal: tuple[float, float], can_turn: bool) -> Mo
     if can_turn and abs(bearing) > config.approach_turn_deg:
         return Move("turn", TURN_LEFT if bearing > 0 else TURN_RIGHT, turn_deg=abs(bearing),
                     why="face the approach point")
-    strides, _ = strides_for(config, math.hypot(*goal) + config.window_middle_m)
+    distance = math.hypot(*goal)
+    strides = min(range(1, 3 + int(distance / config.stride_m)), key=lambda n: abs(config.walk_in_m(n) - distance))
     return Move("approach", FORWARD, strides=strides, goal_ego=goal, why="walk to the approach point")
 
 

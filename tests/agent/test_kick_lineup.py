@@ -27,12 +27,14 @@ def test_walk_in_distances_follow_the_measured_cycles():
 
 
 @pytest.mark.parametrize("distance_m", [0.34, 0.45, 0.6, 0.85, 1.3])
-def test_strides_leave_the_ball_nearest_to_the_window_middle(distance_m):
+def test_strides_leave_the_ball_nearest_to_the_target_without_touching_it(distance_m):
     strides, after = strides_for(CONFIG, distance_m)
     assert after == pytest.approx(distance_m - CONFIG.walk_in_m(strides))
+    assert after >= CONFIG.walk_in_min_after_m
     for other in range(1, 12):
-        assert abs(after - CONFIG.window_middle_m) <= abs(distance_m - CONFIG.walk_in_m(other)
-                                                           - CONFIG.window_middle_m) + 1e-9
+        other_after = distance_m - CONFIG.walk_in_m(other)
+        if other_after >= CONFIG.walk_in_min_after_m:
+            assert abs(after - CONFIG.walk_in_target_m) <= abs(other_after - CONFIG.walk_in_target_m) + 1e-9
 
 
 def test_ball_on_its_spot_facing_the_aim_kicks_with_that_foot():
@@ -100,3 +102,10 @@ def test_not_localized_never_approaches():
 def test_corrections_used_up_kick_in_the_loose_window_or_give_up():
     assert decide((0.118 + 0.06, 0.0), corrections=CONFIG.max_corrections).kind == "kick"
     assert decide((0.4, 0.2), corrections=CONFIG.max_corrections).kind == "give_up"
+
+
+def test_ball_at_the_feet_far_off_the_aim_backs_off_first():
+    """Turning 60° or walking round with the ball 0.2 m ahead would kick it: back off by counted cycles."""
+    move = decide((0.2, 0.0), aim_deg=60.0)
+    assert (move.kind, move.motion) == ("walk_back", "walk_backward")
+    assert CONFIG.backward_walk_m + (move.strides - 1) * CONFIG.backward_stride_m >= CONFIG.room_m - 0.2
