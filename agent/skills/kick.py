@@ -27,7 +27,7 @@ import math
 from agent.motion import MotionController, MotionRequest
 from agent.skills.base import Skill
 from agent.skills.kick_lineup import KickConfig, Move, Spot, plan
-from agent.skills.walk import report_walk_odometry
+from agent.skills.walk import WalkConfig, WalkTo, report_walk_odometry
 from agent.world.frames import wrap_angle_rad
 from agent.world_model import WorldModel
 
@@ -111,6 +111,7 @@ class KickToward(Skill):
         self._goal_team: tuple[float, float] | None = None
         self._heading_team_rad: float | None = None
         self._lean = 0.0
+        self._walk_to: WalkTo | None = None
         self._still_since_s: float | None = None
         self._lost_since_s: float | None = None
         self._unlocalized_since_s: float | None = None
@@ -127,7 +128,9 @@ class KickToward(Skill):
         if ball.forward_m is not None and still is not None and ball.seen_s >= still:
             return ball.forward_m, ball.left_m  # type: ignore[return-value]
         pose = world.pose
-        if pose is not None and ball.position is not None and age <= self.config.remembered_ball_s:
+        seen_here = self._started_s is not None and ball.seen_s >= self._started_s
+        limit = self.config.remembered_ball_s if seen_here else self.config.max_ball_age_s
+        if pose is not None and ball.position is not None and age <= limit:
             return pose.to_ego(*ball.position)
         if ball.forward_m is not None and age <= self.config.max_ball_age_s:
             return ball.forward_m, ball.left_m  # type: ignore[return-value]
@@ -215,11 +218,13 @@ class KickToward(Skill):
             return self._request(move.motion, ball)
         if move.fine:
             self.fine_steps += 1
-        if move.kind == "approach":
+        if move.kind in ("approach", "walk_to"):
             self.approaches += 1
             assert pose is not None and move.goal_ego is not None
             self._goal_team = pose.to_team(*move.goal_ego)
             self._heading_team_rad = None
+            if move.kind == "walk_to":
+                self._walk_to = WalkTo(*self._goal_team, WalkConfig(arrive_m=self.config.walk_to_m - 0.5))
         else:
             self.corrections += 1
             self._goal_team = None
@@ -244,6 +249,15 @@ class KickToward(Skill):
         if move is None:
             return None
         head = self._head(self._ball_ego(world))
+        if move.kind == "walk_to":
+            walk_to = self._walk_to
+            assert walk_to is not None
+            if not walk_to.done:
+                return walk_to.step(world, motion)
+            if not motion.idle:
+                return MotionRequest(None, head_deg=head)
+            self._move, self._walk_to, self._still_since_s = None, None, None
+            return None
         if not self._move_started:
             if motion.motion_name != move.motion:
                 return MotionRequest(move.motion, turn_deg=move.turn_deg, head_deg=head)

@@ -101,6 +101,9 @@ class KickConfig:
     behind_m: float = 0.3
     """... unless the kick pose lies more than this behind the robot (the robot stands on the far side of
     the ball: backing off does not help, it walks round the ball) [m]."""
+    walk_to_m: float = 2.5
+    """An approach point farther than this is walked toward with ``agent.skills.walk.WalkTo`` (steering,
+    obstacle avoidance) until it is ``walk_to_m - 0.5`` away; the counted strides take the rest [m]."""
     approach_min_m: float = 0.25
     """An approach point nearer than this is not walked to; the robot turns to the aim where it is [m]."""
     approach_turn_deg: float = 12.0
@@ -126,8 +129,8 @@ class KickConfig:
     max_ball_age_s: float = 3.0
     """A ball sighting older than this counts as lost [s]..."""
     remembered_ball_s: float = 10.0
-    """... unless localized: then the ball's field position is trusted this long (turning and walking round
-    the ball, the camera loses it for seconds) [s]."""
+    """... unless localized and seen since the skill started: then the ball's field position is trusted this
+    long (turning and walking round the ball, the camera loses it for seconds) [s]."""
     lost_timeout_s: float = 8.0
     """Give up after the ball has been lost this long [s]."""
     head_pitch_deg: float = -45.0
@@ -209,7 +212,8 @@ class Move:
 
     ``kind``: ``kick`` (play ``motion``), ``turn`` (``motion`` by ``turn_deg``), ``walk_in`` (forward walk of
     ``strides`` holding the aim), ``approach`` (forward walk of ``strides`` toward ``goal_ego``),
-    ``walk_side`` (sideways walk ``motion`` of ``strides``), ``move``
+    ``walk_side`` (sideways walk ``motion`` of ``strides``), ``walk_back`` (backward, ``strides``), ``walk_to``
+    (the walk skill toward ``goal_ego``, from afar), ``move``
     (one short request of a walk or a kick step), ``give_up``.
     """
 
@@ -310,6 +314,8 @@ def plan(config: KickConfig, ball: tuple[float, float], aim_rad: float, spots: l
     goal = _approach_goal(config, ball, a)
     can_approach = (walk and localized and approaches < config.max_approaches
                     and math.hypot(*goal) > config.approach_min_m)
+    if can_approach and math.hypot(a.error_f, a.error_l) > config.walk_to_m:
+        return a, _toward(config, goal, can_turn)  # far: a long walk-in or sideways walk drifts
     side = SIDE_LEFT if a.error_l > 0 else SIDE_RIGHT
     if abs(a.error_l) >= config.side_walk_m - config.side_stride_m / 2 and side in motions:
         strides = _side_strides(config, abs(a.error_l))
@@ -378,12 +384,15 @@ def _fine_step(config: KickConfig, a: Alignment, motions: frozenset[str] | set[s
 
 
 def _toward(config: KickConfig, goal: tuple[float, float], can_turn: bool) -> Move:
-    """Turn toward an approach point, or walk there when it lies ahead."""
+    """Turn toward an approach point, or walk there when it lies ahead; from afar with the walk skill
+    (steering, obstacle avoidance) to ``walk_to_m`` of it first."""
+    distance = math.hypot(*goal)
+    if distance > config.walk_to_m:
+        return Move("walk_to", FORWARD, goal_ego=goal, why="walk toward the approach point")
     bearing = math.degrees(math.atan2(goal[1], goal[0]))
     if can_turn and abs(bearing) > config.approach_turn_deg:
         return Move("turn", TURN_LEFT if bearing > 0 else TURN_RIGHT, turn_deg=abs(bearing),
                     why="face the approach point")
-    distance = math.hypot(*goal)
     strides = min(range(1, 3 + int(distance / config.stride_m)), key=lambda n: abs(config.walk_in_m(n) - distance))
     return Move("approach", FORWARD, strides=strides, goal_ego=goal, why="walk to the approach point")
 

@@ -8,8 +8,8 @@ import math
 
 import pytest
 
-from agent.motion import default_library
-from agent.skills.kick import KickToward
+from agent.motion import MotionLibrary, default_library
+from agent.skills.kick import KickConfig, KickToward
 from motion_studio.kick_rollout import Placement, ball_spot, run_kick
 from motion_studio.skill_bench.kick import _skill_scenario, challenge_attempt, skill_run
 
@@ -73,3 +73,28 @@ def test_kick_challenge_attempt_kicks_in_time(library):
     assert attempt["end"] == "ball stopped outside the circle", attempt
     assert attempt["kicked"] and not attempt["fell"], attempt
     assert attempt["moved_m"] >= 2.0 and attempt["score_m"] < 3.5, attempt
+
+
+def test_place_and_kick_with_a_library_without_walks_or_turns(library):
+    """Only the stance and the kicks: the robot placed 1 cm off the right foot's spot kicks from there."""
+    kicks_only = MotionLibrary({name: library.get(name) for name in library.names
+                                if name == "stand" or name.startswith("kick") and "step" not in name})
+    spot = library.get("kick").constants
+    scenario = _skill_scenario((-4.0, 0.0), 0.0, seed=4, library=kicks_only)
+    truth = scenario.truth()
+    ball = ball_spot(truth, spot["ball_forward_m"] + 0.01, spot["ball_left_m"], 0.0)
+    scenario.place_ball(ball)
+    skill = KickToward(ball[0] + 10.0, ball[1] + 3.0)  # 17° off: cannot turn, kicks along its heading
+    result = skill_run(scenario, skill, ball, (ball[0] + 10.0, ball[1]), LIMIT_S)
+    assert skill.kicked and skill.moves == [f"kick:{skill.foot}"], (skill.reason, skill.moves)
+    assert result["distance_m"] >= 1.5 and not result["fell"], result
+
+
+def test_ball_out_of_sight_gives_up_with_a_reason(library):
+    """No ball in view (behind the robot): the skill sweeps its head, then stops with ``ball lost``."""
+    scenario = _skill_scenario((-4.0, 0.0), 0.0, seed=6, library=library, ball_m=(-8.0, 0.0))
+    scenario.run(int(KickConfig().max_ball_age_s / 0.02) + 10)  # the sighting from before the placement expires
+    skill = KickToward(0.0, 0.0)
+    scenario.set_skill(skill)
+    scenario.run(int((KickConfig().lost_timeout_s + 1.0) / 0.02))
+    assert skill.done and not skill.kicked and skill.reason == "ball lost"
