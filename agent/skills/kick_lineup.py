@@ -115,7 +115,10 @@ class KickConfig:
     lean_full_deg: float = 15.0
     """Heading error asking for the full lean (``max_lean``) [deg]."""
     max_fine_steps: int = 1
-    """Kick steps taken to bring a ball already in the loose window into the window (2.5 s each)..."""
+    """Kick steps taken to bring a ball already in the loose window into the window (2.5 s each), or from
+    beyond ``fine_far_m`` along the line to within it..."""
+    fine_far_m: float = 0.06
+    """... (farther, the kick flies 10-12° off) [m]..."""
     fine_steps_within_s: float = 4.0
     """... only this long after the skill's start [s]: later the loose window is kicked at once (in a
     match or the kick challenge a kick now beats a better one 2.5 s later)."""
@@ -374,7 +377,9 @@ def _fine_step(config: KickConfig, a: Alignment, motions: frozenset[str] | set[s
     across_ok = abs(a.error_l) <= _lateral_limit(config, a.spot, a.error_l, loose=False)
     if across_ok and not along_ok:
         name, after = (STEP_FORWARD, a.error_f - step_m) if a.error_f > 0 else (STEP_BACKWARD, a.error_f + step_m)
-        if config.forward_min_m <= after <= config.forward_max_m and name in motions:
+        into = config.forward_min_m <= after <= config.forward_max_m
+        nearer = a.error_f > config.fine_far_m >= after  # out of the loose window's far, inaccurate end
+        if (into or nearer) and name in motions:
             return Move("move", name, fine=True, why="one kick step into the window")
     if along_ok and not across_ok and a.error_f >= 0.0:
         name, after = (STEP_LEFT, a.error_l - step_m) if a.error_l > 0 else (STEP_RIGHT, a.error_l + step_m)
