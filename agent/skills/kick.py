@@ -6,17 +6,22 @@ motion library. Each kick motion says where it wants the ball (its constants ``b
 knows the spot to stand on for either foot. Standing still with a fresh ball sighting, it asks
 ``agent.skills.kick_lineup.plan`` for the next move and plays it:
 
-1. not facing the aim and far from the ball: turn toward a point behind the ball on the kick line and walk
-   there (a counted number of strides, steered with the walk lean), then turn to the aim;
-2. facing the aim: one walk-in along the kick line, its strides chosen so the ball ends in the middle of
-   the kick's forward window (a walk covers a fixed distance per stride, whenever it is asked to stop);
+1. far from the kick pose (or on the wrong side of the ball): walk to a point behind the ball on the kick
+   line (``agent.skills.walk.WalkTo`` from afar, then a turn toward the point and a counted number of
+   strides steered with the walk lean), then turn to the aim; with the ball at the feet and the aim far off,
+   back off first;
+2. facing the aim: one walk-in along the kick line, its strides chosen so the ball ends just beyond its spot
+   (a walk covers a fixed distance per stride, whenever it is asked to stop);
 3. kick within the window; kick steps (2 cm), sideways or backward walks only for what the walk-in cannot
-   fix, and the loose window when such a slow correction would be needed or the corrections are used up;
-   else give up (``done`` with ``kicked`` False).
+   fix, and the loose window when such a slow correction would be needed (after the first 4 s, or once the
+   corrections are used up); else give up (``done`` with ``kicked`` False).
+
+While the robot moves the ball estimate goes through the localized pose (a ball out of view is remembered
+10 s once seen during the skill) and the head follows it; decisions wait for a sighting taken standing still.
 
 Without walk or turn motions in the library the corresponding moves are skipped (place-and-kick: someone
-else put the robot behind the ball). The foot is the one whose spot is nearer to where the ball lies, chosen
-anew before each move.
+else put the robot behind the ball; without turns the kick goes where the robot faces). The foot is the one
+whose spot suits the ball best (the lateral tolerance is tighter outward), chosen anew before each move.
 """
 
 from __future__ import annotations

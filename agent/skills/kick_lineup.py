@@ -6,17 +6,20 @@ Measured on our simulator (the walk benchmark's gait, the kick benchmark's kicks
 * a forward walk covers a fixed distance per cycle begun: stopped in (or before) its first cycle it still
   walks 0.33 m (start ramp, one cycle, stop ramp), 0.44 m in its second, and each further cycle adds
   0.118 m, whatever the moment of the stop request within the cycle; so a walk-in is planned as a count of
-  cycles ("strides"), the one that leaves the ball nearest to the middle of the kick's forward window;
-* a sideways walk moves at least 0.27 m, a backward walk at least 0.30 m (2.1-2.4 s each);
+  cycles ("strides"): the one that leaves the ball nearest to ``walk_in_target_m`` beyond its spot without
+  the last swing reaching the ball;
+* a sideways walk moves at least 0.27 m, a backward walk at least 0.30 m (2.1-2.4 s each), then 9-10 cm
+  per further cycle;
 * a kick step moves 2 cm in 2.5 s; a turn motion turns up to about 40° in 0.7 s;
 * the kick itself is forgiving along its line (the ball 1.5 cm nearer to 9 cm farther than its spot
-  still flies 1.9-3.5 m within about 11°) and less so across it and in heading (the ball follows the
-  robot's heading error almost one to one).
+  still flies 1.9-3.5 m within about 11°, farthest from the spot itself) and less so across it (outward)
+  and in heading (the ball follows the robot's heading error almost one to one).
 
-Hence the order: face the aim (turn, or walk to a point behind the ball on the kick line first when the
-ball is far), then one walk-in of the planned strides along the kick line, then kick; kick steps and
-sideways or backward walks only for what the walk-in cannot fix, and the loose window when a correction
-would cost more than it gains.
+Hence the order: far from the kick pose, walk to a point behind the ball on the kick line (with the walk
+skill from beyond 2.5 m, then turning toward the point and walking counted strides); with the ball at the
+feet and the aim far off, back off first (a turn there would swing the feet into the ball); face the aim;
+one walk-in of counted strides along the kick line; kick. Kick steps and sideways or backward walks only
+for what the walk-in cannot fix, and the loose window when such a correction would cost more than it gains.
 """
 
 from __future__ import annotations
