@@ -17,7 +17,10 @@ Thresholds (numbers, not tuned curves):
   row (sitting, kneeling); the stand-up then stops every motion, waits until the
   robot rests (QUIET_CYCLES of a quiet gyro and a gravity-like accelerometer, at most SETTLE_CYCLES) and
   reads the side it plays from the accelerometer, else from the orientation filter; a robot on its side
-  first plays ``roll_to_back``;
+  but turned towards its front (gravity at least SIDE_FRONT_ACC_FRACTION of g towards its chest) plays the
+  front stand-up (on our simulator it stands from a front lie turned up to 75 deg about the long axis, the
+  back one only up to about 30 deg), one on its side otherwise first plays ``roll_to_back`` (once: still on
+  its side after the roll, it plays the stand-up of the side it leans to);
 * success: an upright torso on loaded feet for RECOVERY_CYCLES after the motion; a robot not upright within
   CHECK_TIMEOUT_CYCLES (or lying again) tries again.
 
@@ -49,10 +52,12 @@ FEET_LOADED_N = 25.0
 QUIET_GYRO_DEG_S = 60.0
 #: Cycles of evidence before a fall is confirmed (window, cycles lying, cycles unloaded in it) / a recovery
 #: is accepted.
-CONFIRM_WINDOW = 6
-CONFIRM_LYING = 5
-CONFIRM_UNLOADED = 4
+CONFIRM_WINDOW = 4
+CONFIRM_LYING = 3
+CONFIRM_UNLOADED = 3
 CONFIRM_CYCLES = CONFIRM_WINDOW
+#: Cycles upright on loaded feet that end a suspicion (a bump, not a fall).
+BUMP_CYCLES = 12
 RECOVERY_CYCLES = 15
 #: After a suspicion, feet unloaded this long also confirm a fall, lying or not (a robot sitting, kneeling or
 #: stuck on its arms); standing and walking keep at least one foot loaded.
@@ -67,6 +72,9 @@ CHECK_TIMEOUT_CYCLES = 50
 QUIET_CYCLES = 3
 REST_ACC_FRACTION = 0.3
 SETTLE_CYCLES = 25
+#: On its side (gravity mostly along the torso's x axis) with at least this fraction of g towards its chest
+#: (-y): lying turned less than about 72 deg from its front, where the front stand-up still works.
+SIDE_FRONT_ACC_FRACTION = 0.3
 #: Torso up-axis z above this = upright.
 UPRIGHT_UP_Z = 0.85
 #: Motions by the side the robot lies on.
@@ -104,6 +112,13 @@ def standup_side(world: WorldModel) -> str:
     return "front" if world.body.pitch_forward_rad > 0 else "back"
 
 
+def at_rest(world: WorldModel) -> bool:
+    """A quiet gyro and a gravity-like accelerometer (this cycle): the accelerometer then says the side."""
+    gx, gy, _ = world.body.gyro_deg_s
+    return (abs(gx) + abs(gy) < QUIET_GYRO_DEG_S
+            and abs(math.hypot(*world.body.acc_m_s2) - GRAVITY_M_S2) < REST_ACC_FRACTION * GRAVITY_M_S2)
+
+
 def lying(world: WorldModel) -> bool:
     """The torso lies: the accelerometer at rest says so, or the orientation filter does."""
     return lying_side(world) is not None or world.body.up_z < LYING_UP_Z
@@ -117,7 +132,7 @@ def upright_on_feet(world: WorldModel) -> bool:
 class FallWatch:
     """Possible fall (gyro, accelerometer or tilt), confirmed by no weight on the feet and a lying
     accelerometer or orientation filter (see the module docstring for the window); a suspicion ends after
-    2 * CONFIRM_WINDOW cycles upright on loaded feet (a bump). ``fallen`` and
+    BUMP_CYCLES cycles upright on loaded feet (a bump). ``fallen`` and
     ``side`` hold until :meth:`reset`."""
 
     def __init__(self) -> None:
@@ -145,7 +160,7 @@ class FallWatch:
         self._window.append((lying(world), unloaded))
         self._unloaded = self._unloaded + 1 if unloaded else 0
         self._upright = self._upright + 1 if upright_on_feet(world) and rate < GYRO_TRIGGER_DEG_S else 0
-        if self._upright >= 2 * CONFIRM_WINDOW:
+        if self._upright >= BUMP_CYCLES:
             self.suspected = False  # a bump, not a fall
             self._upright = 0
             self._window.clear()
@@ -180,6 +195,7 @@ class StandUp(Skill):
         self._check_cycles = 0
         self._settle_cycles = 0
         self._quiet_cycles = 0
+        self._rolled = False
         self.state = "choose"
 
     def step(self, world: WorldModel, motion: MotionController) -> MotionRequest:
@@ -187,21 +203,22 @@ class StandUp(Skill):
             if upright_on_feet(world):
                 self._enter_check()
                 return MotionRequest(None)
-            gx, gy, _ = world.body.gyro_deg_s
-            at_rest = (abs(gx) + abs(gy) < QUIET_GYRO_DEG_S
-                       and abs(math.hypot(*world.body.acc_m_s2) - GRAVITY_M_S2) < REST_ACC_FRACTION * GRAVITY_M_S2)
-            self._quiet_cycles = self._quiet_cycles + 1 if at_rest else 0
+            self._quiet_cycles = self._quiet_cycles + 1 if at_rest(world) else 0
             if self._quiet_cycles < QUIET_CYCLES and self._settle_cycles < SETTLE_CYCLES:
                 self._settle_cycles += 1  # still tumbling: the side is not known yet; stop every motion
                 return MotionRequest(None, interrupt=True)
             self._settle_cycles = 0
             self._quiet_cycles = 0
             side = lying_side(world)
-            if side == "side" and SIDE_ROLL_MOTION in motion.library:
+            if side == "side" and world.body.acc_m_s2[1] < -SIDE_FRONT_ACC_FRACTION * GRAVITY_M_S2:
+                side = "front"  # turned towards its front: the front stand-up works from there, no roll
+            if side == "side" and SIDE_ROLL_MOTION in motion.library and not self._rolled:
                 name = SIDE_ROLL_MOTION
+                self._rolled = True
             else:
                 side = side if side in STANDUP_MOTIONS else standup_side(world)
                 name = STANDUP_MOTIONS[side]
+                self._rolled = False
                 self.attempts += 1
                 self.sides.append(side)
             self._playing = name

@@ -9,7 +9,7 @@ import math
 from agent.motion import MotionController, MotionLibrary
 from agent.skills.behavior import SkillBehavior
 from agent.skills.standup import (CHECK_TIMEOUT_CYCLES, CONFIRM_CYCLES, CONFIRM_LYING, QUIET_CYCLES, RECOVERY_CYCLES,
-                                  UNLOADED_CYCLES, FallWatch, lying_side, standup_side)
+                                  SIDE_ROLL_MOTION, UNLOADED_CYCLES, FallWatch, lying_side, standup_side)
 from agent.world.state import FootContact
 from agent.world_model import WorldModel
 from kinematics import JOINT_NAMES
@@ -122,8 +122,9 @@ def _stand_in(name: str) -> Motion:
     return Motion(name, phases, source_format=XML, first_phase="a")
 
 
-def _behavior() -> SkillBehavior:
-    library = MotionLibrary({name: _stand_in(name) for name in ("standup_back", "standup_front")})
+def _behavior(roll: bool = False) -> SkillBehavior:
+    names = ("standup_back", "standup_front") + ((SIDE_ROLL_MOTION,) if roll else ())
+    library = MotionLibrary({name: _stand_in(name) for name in names})
     return SkillBehavior(MotionController(library))
 
 
@@ -185,3 +186,21 @@ def test_standup_retries_when_not_upright_in_time():
     _set(world, (0.0, 4.0, 8.9), feet=EDGE_ON, up_z=0.9)  # sitting: upright-ish, feet unloaded, not lying
     _cycle(behavior, world, CHECK_TIMEOUT_CYCLES + 1 + QUIET_CYCLES)
     assert behavior.standup.attempts == 2 and behavior.standup.sides == ["back", "back"]
+
+
+def test_a_robot_on_its_side_rolls_once_then_stands_up_from_the_side_it_leans_to():
+    behavior, world = _behavior(roll=True), _world()
+    _set(world, SIDE, feet={}, up_z=0.1)
+    _cycle(behavior, world, CONFIRM_CYCLES + QUIET_CYCLES)
+    assert behavior.recovering and behavior.standup.attempts == 0
+    _play_to_end(behavior, world, SIDE_ROLL_MOTION)
+    _cycle(behavior, world, QUIET_CYCLES + 1)  # the roll left it on its side: no second roll
+    assert behavior.standup.sides == ["back"]  # SIDE leans back (+y)
+
+
+def test_a_robot_on_its_side_turned_to_its_front_plays_the_front_standup_without_a_roll():
+    behavior, world = _behavior(roll=True), _world()
+    _set(world, (0.9 * G, -0.4 * G, 0.5), feet={}, up_z=0.1)  # about 66 deg from its front
+    _cycle(behavior, world, CONFIRM_CYCLES + QUIET_CYCLES)
+    assert behavior.standup.sides == ["front"]
+    assert behavior.motion.completed[SIDE_ROLL_MOTION] == 0

@@ -66,3 +66,13 @@ def test_a_robot_knocked_over_while_standing_recovers():
     assert scenario.behavior.standup.attempts >= 1
     assert not any(t.fallen for t in scenario.run(25))
     assert not scenario.behavior.recovering
+
+
+@pytest.mark.parametrize("walk", ["walk_forward", "walk_backward", "walk_left"])
+def test_a_walking_robot_is_not_taken_for_fallen(walk):
+    scenario = _standing_robot()
+    scenario.set_skill(PlayMotion(walk, repeat=True))
+    for truth in scenario.run(300):  # 6 s
+        assert not truth.fallen, f"{walk} fell"
+        assert not scenario.behavior.fall_watch.fallen and not scenario.behavior.recovering
+    assert scenario.behavior.standup.attempts == 0
