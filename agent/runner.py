@@ -144,13 +144,18 @@ def run(config: AgentConfig, host: str = DEFAULT_HOST, port: int = DEFAULT_PORT,
     stats = RunStats()
     reconnects = 0
     while True:
+        # The agent is built before connecting, never between the connection and its (scene ...): building
+        # one (motion library, kinematics, first imports) takes 0.1-1 s, and the real server in sync mode,
+        # waiting that long for a new connection's first message, stalls every agent for good (each times
+        # out, all reconnect in the same cycle and their robots, built at one spot, knock each other over).
+        agent = make_agent(config)
         sock = connect(host, port, policy, stop)
         stats.connections += 1
         logger.info("connected to %s:%d as %s #%d (type %d)", host, port, config.team, config.unum,
                     config.robot_type)
         try:
             with sock:
-                serve(sock, make_agent(config), stats, stop)
+                serve(sock, agent, stats, stop)
             reason = "closed by the server"
         except (OSError, ProtocolError) as error:
             reason = str(error) or type(error).__name__

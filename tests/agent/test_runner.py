@@ -65,6 +65,34 @@ def test_handshake_every_cycle_answered_bad_message_skipped_then_reconnect():
     assert parse_actions(second[1])[0] == Init(1, "CapL")
 
 
+def test_agent_is_built_before_connecting(monkeypatch):
+    """The real server in sync mode stalls when a new connection's (scene ...) comes late (building the soccer
+    agent takes 0.1-1 s: every agent then timed out and reconnected), so nothing slow may sit between the
+    connection and the scene: each agent, the first and each reconnection's, is made before its connect."""
+    import agent.runner as runner
+    from agent.agent import Agent
+
+    events: list[str] = []
+    real_connect = runner.connect
+
+    def connect(*args, **kwargs):
+        events.append("connect")
+        return real_connect(*args, **kwargs)
+
+    def make_agent(config):
+        events.append("make")
+        return Agent(config)
+
+    monkeypatch.setattr(runner, "connect", connect)
+    good = sample_messages(2)
+    server = ScriptedServer([good, good])
+    with pytest.raises(ServerUnreachable):
+        run(AgentConfig("CapL", 1), "127.0.0.1", server.port, FAST, make_agent=make_agent)
+    server.thread.join(5)
+    assert events == ["make", "connect", "make", "connect"]
+    assert all(len(replies) == 1 + len(good) for replies in server.received)
+
+
 def test_stop_event_ends_the_run_cleanly():
     stop = threading.Event()
     messages = sample_messages(4)
