@@ -22,6 +22,7 @@ same game time (localization error).
     .venv/bin/python tools/real_match_check.py --players 3 --duration 120 --json out/real_match_check/figures.json
     .venv/bin/python tools/real_match_check.py --types 0       # every robot type 0 (a diagnosis, not --type auto)
     .venv/bin/python tools/real_match_check.py --only ours     # our simulator only (no namespace needed)
+    .venv/bin/python tools/real_match_check.py --cli           # real: python -m agent processes, monitor figures
 
 Kicks are also judged by their effect: the ball's move in KICK_EFFECT_S after the kick motion started and
 where the ball lay in the kicker's torso frame then (monitor truth; the kick motions want it at their
@@ -43,6 +44,7 @@ import logging
 import math
 import os
 import re
+import signal
 import subprocess
 import sys
 import tempfile
@@ -210,6 +212,10 @@ class Played:
     agents: list[Watched]
     wall_s: float
     kick_off: str
+    lineup: list[tuple[str, int, int]]
+    until_s: float
+    """Game time the match was meant to last: later monitor frames are left out (a server whose agents
+    stopped runs on as fast as it can until it is stopped)."""
     notes: dict[str, Any] = field(default_factory=dict)
 
 
@@ -297,7 +303,68 @@ def run_real(players: int, duration_s: float, kick_off: str, out: Path) -> Playe
     notes["server errors"] = dict(collections.Counter(
         line.strip()[:160] for line in played_log.splitlines()
         if "error" in line.lower() and not any(h in line for h in headless)))
-    return Played("real", log_path, agents, wall_s, kick_off, notes)
+    return Played("real", log_path, agents, wall_s, kick_off, lineup(players), duration_s, notes)
+
+
+def run_real_cli(players: int, duration_s: float, kick_off: str, out: Path, code_dir: Path) -> Played:
+    """The real match with ``python -m agent --team T --unum N --type auto`` processes (the code of
+    ``code_dir``), as a person would start them; only the monitor measures (the agents' own figures are
+    unknown), the notes keep each process's exit code and what its log says about trouble."""
+    from tools.real_server import MonitorLink, RealServer
+
+    server = RealServer(out / "real_server.log")
+    processes: list[tuple[str, subprocess.Popen, Path]] = []
+    notes: dict[str, Any] = {}
+    started = time.perf_counter()
+    monitor = None
+    time_pattern = re.compile(rb"\(time ([0-9.]+)\)")
+
+    def game_time() -> float:
+        found = time_pattern.search(monitor.frames[-1][:200]) if monitor and monitor.frames else None
+        return float(found.group(1)) if found else 0.0
+
+    try:
+        time.sleep(1.0)
+        monitor = MonitorLink()
+        for team, unum, _ in lineup(players):
+            log = out / f"cli_{team}_{unum}.log"
+            command = [sys.executable, "-m", "agent", "--team", team, "--unum", str(unum), "--type", "auto"]
+            process = subprocess.Popen(command, cwd=code_dir, stdout=subprocess.DEVNULL, stderr=open(log, "w"))
+            processes.append((f"{team}_{unum}", process, log))
+            deadline = time.monotonic() + 30.0
+            while "connected to" not in log.read_text(errors="replace") and time.monotonic() < deadline \
+                    and process.poll() is None:
+                time.sleep(0.05)
+            time.sleep(0.3)  # a few cycles before the next robot is built
+        time.sleep(KICK_OFF_WAIT_S)  # wall time: at least as much server time (the server runs faster)
+        monitor.send(f"(kickOff {kick_off})")
+        wall_limit = time.monotonic() + max(600.0, 30.0 * duration_s)
+        while time.monotonic() < wall_limit and game_time() < duration_s:
+            time.sleep(0.02)
+        wall_s = time.perf_counter() - started
+    finally:
+        for _, process, _ in processes:  # the agents first: the server's end would make them reconnect
+            if process.poll() is None:
+                process.send_signal(signal.SIGINT)
+        for _, process, _ in processes:
+            try:
+                process.wait(10)
+            except subprocess.TimeoutExpired:
+                process.kill()
+                process.wait(5)
+        server.stop()
+        if monitor is not None:
+            monitor.close()
+    log_path = out / "real_monitor.log"
+    log_path.write_bytes(b"\n".join(monitor.frames) + b"\n")
+    trouble = ("Traceback", "WARNING", "ERROR", "lost", "malformed", "timed out")
+    notes["processes"] = {}
+    for name, process, log in processes:
+        text = log.read_text(errors="replace")
+        notes["processes"][name] = {"exit code": process.returncode,
+                                    "connections": text.count("connected to 127.0.0.1"),
+                                    **{word: text.count(word) for word in trouble if word in text}}
+    return Played("real (python -m agent)", log_path, [], wall_s, kick_off, lineup(players), duration_s, notes)
 
 
 # ---- our match ----------------------------------------------------------------------------------------
@@ -331,7 +398,7 @@ def run_ours(players: int, duration_s: float, seed: int, out: Path) -> Played:
                            "agent_errors": result.agent_errors, "final_play_mode": result.final_play_mode,
                            "possession": result.possession},
              "logged warnings": dict(counter.counts), "first warnings": counter.first}
-    return Played("ours", log_path, agents, result.wall_s, kick_off, notes)
+    return Played("ours", log_path, agents, result.wall_s, kick_off, lineup(players), duration_s, notes)
 
 
 # ---- figures from the monitor stream and the agents ----------------------------------------------------
@@ -379,7 +446,10 @@ def figures(played: Played) -> dict[str, Any]:
     before: dict[str, tuple[float, float]] = {}
     game_time = 0.0
     first_play_on = None
+    seen: set[str] = set()
     for frame in _frames(played.monitor_log):
+        if frame.time_s > played.until_s + CYCLE_S / 2:
+            break
         frames += 1
         mode = PLAY_MODES[frame.play_mode] if frame.play_mode is not None and frame.play_mode < len(PLAY_MODES) \
             else "unknown"
@@ -393,6 +463,9 @@ def figures(played: Played) -> dict[str, Any]:
             previous_mode = mode
         score, game_time = frame.score, frame.time_s
         for name, robot in frame.robots.items():
+            if robot.side is None:  # a robot being built (no team material yet)
+                continue
+            seen.add(name)
             torso = robot.bodies.get("torso")
             if torso is None:
                 continue
@@ -416,7 +489,7 @@ def figures(played: Played) -> dict[str, Any]:
             last_ball = (bx, by)
             ball_far = max(ball_far, math.hypot(bx, by))
             ball_x = [min(ball_x[0], bx), max(ball_x[1], bx)]
-    names = sorted({*fallen, *(f"{w.team.lower()}_{w.unum}" for w in played.agents)})
+    names = sorted({*seen, *(f"{team.lower()}_{unum}" for team, unum, _ in played.lineup)})
     out: dict[str, Any] = {
         "wall [s]": round(played.wall_s, 1),
         "game time [s]": round(game_time, 2),
@@ -435,13 +508,17 @@ def figures(played: Played) -> dict[str, Any]:
     for name in names:
         out[f"falls {name}"] = falls.get(name, 0)
     offsets = []
-    for watched in played.agents:
-        spot = beam_spot(watched.unum)
-        sign = 1.0 if watched.team == LEFT_TEAM else -1.0
-        where = at_kick_off.get(f"{watched.team.lower()}_{watched.unum}")
+    for team, unum, _ in played.lineup:
+        spot = beam_spot(unum)
+        sign = 1.0 if team == LEFT_TEAM else -1.0
+        where = at_kick_off.get(f"{team.lower()}_{unum}")
         if where is not None:
             offsets.append(math.dist(where, (sign * spot.x_m, sign * spot.y_m)))
     out["beam offset max [m]"] = round(max(offsets), 3) if offsets else math.nan
+    fouls = _fouls(played.monitor_log, played.until_s)
+    out["referee fouls"] = ", ".join(f"{k} {v}" for k, v in sorted(fouls.items())) or "-"
+    if not played.agents:  # python -m agent processes (--cli): what they said is in the notes
+        return out
     kicks = {w.name: len(w.kicks) for w in played.agents}
     out["kicks (motion starts)"] = sum(kicks.values())
     for name, count in kicks.items():
@@ -498,8 +575,6 @@ def figures(played: Played) -> dict[str, Any]:
     out["malformed sense messages"] = sum(w.bad_messages for w in played.agents)
     out["agent cycles"] = sum(w.cycles for w in played.agents)
     out["reconnections"] = sum(max(0, w.connections - 1) for w in played.agents)
-    fouls = _fouls(played.monitor_log)
-    out["referee fouls"] = ", ".join(f"{k} {v}" for k, v in sorted(fouls.items())) or "-"
     return out
 
 
@@ -520,12 +595,17 @@ FOUL_TYPES = {"0": "crowding", "1": "touching", "2": "illegal defence", "3": "il
               "5": "kick-off", "6": "charging", "7": "self-collision"}
 
 
-def _fouls(path: Path) -> collections.Counter[str]:
-    """Referee fouls of the monitor stream by type (REFERENCE §4.5; each reported once by its index)."""
+def _fouls(path: Path, until_s: float) -> collections.Counter[str]:
+    """Referee fouls of the monitor stream by type (REFERENCE §4.5; each reported once by its index) up to
+    game time ``until_s``."""
     seen: dict[str, str] = {}
     pattern = re.compile(rb"\(foul (\d+) (\d+) (\d+) (\d+)\)")
+    time_pattern = re.compile(rb"\(time ([0-9.]+)\)")
     with open(path, "rb") as handle:
         for line in handle:
+            found = time_pattern.search(line[:4000])
+            if found and float(found.group(1)) > until_s + CYCLE_S / 2:
+                break
             for index, kind, _team, _unum in pattern.findall(line[:4000]):
                 seen[index.decode()] = FOUL_TYPES.get(kind.decode(), kind.decode())
     return collections.Counter(seen.values())
@@ -559,12 +639,12 @@ def problems(played: Played) -> list[str]:
 
 
 # ---- entry ---------------------------------------------------------------------------------------------
-def use_code(revision: str) -> str:
+def use_code(revision: str) -> tuple[str, Path]:
     """Put the code of a git revision first on ``sys.path`` (exported into a temporary folder); returns the
-    short revision (``worktree``: this tree)."""
+    short revision (``worktree``: this tree) and the folder."""
     if revision == "worktree":
         sys.path.insert(0, str(REPO))
-        return "worktree"
+        return "worktree", REPO
     short = subprocess.run(["git", "-C", str(REPO), "rev-parse", "--short", revision], check=True,
                            capture_output=True, text=True).stdout.strip()
     folder = Path(tempfile.mkdtemp(prefix=f"real_match_{short}_"))
@@ -573,7 +653,7 @@ def use_code(revision: str) -> str:
     sys.path.insert(0, str(folder))
     if not (folder / "tools" / "real_server.py").exists():  # a revision before tools/real_server.py
         sys.path.insert(1, str(REPO))
-    return short
+    return short, folder
 
 
 def main() -> None:
@@ -587,6 +667,9 @@ def main() -> None:
                         help="side kicking off on the real server (default: the side our match's coin toss chose)")
     parser.add_argument("--types", help="robot types by unum, cycled, e.g. 0 or 0,2,4 (default: --type auto's, "
                         "agent.team.composition)")
+    parser.add_argument("--cli", action="store_true",
+                        help="real match with python -m agent processes (the command people use) instead of "
+                        "agents in this process; only the monitor's figures then")
     parser.add_argument("--only", choices=("real", "ours"), help="play one of the two matches only")
     parser.add_argument("--out", type=Path, default=Path("out/real_match_check"), help="logs")
     parser.add_argument("--json", type=Path, help="also write the figures as JSON")
@@ -596,7 +679,7 @@ def main() -> None:
         os.execvp(netns, [netns, sys.executable, *sys.argv])
     if not 1 <= args.players <= 11:
         parser.error("--players must be 1-11")
-    revision = use_code(args.code)
+    revision, code_dir = use_code(args.code)
     global TYPES
     if args.types:
         TYPES = tuple(int(t) for t in args.types.split(","))
@@ -618,12 +701,14 @@ def main() -> None:
             kick_off = ours.kick_off
         print(f"ours: played in {ours.wall_s:.0f} s", flush=True)
     if args.only != "ours":
-        real = run_real(args.players, args.duration, kick_off, args.out)
+        real = (run_real_cli(args.players, args.duration, kick_off, args.out, code_dir) if args.cli else
+                run_real(args.players, args.duration, kick_off, args.out))
         played.insert(0, real)
         print(f"real: played in {real.wall_s:.0f} s", flush=True)
-    figs = {p.where: figures(p) for p in played}
+    figs = {p.where.split()[0]: figures(p) for p in played}
     for p in played:
-        results[p.where] = {"figures": figs[p.where], "notes": p.notes, "problems": problems(p)}
+        results[p.where.split()[0]] = {"what": p.where, "figures": figs[p.where.split()[0]], "notes": p.notes,
+                                       "problems": problems(p)}
     print(table(figs.get("real", {}), figs.get("ours", {})), flush=True)
     for p in played:
         print(f"{p.where} notes: {json.dumps(p.notes, default=str)}")
