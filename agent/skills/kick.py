@@ -20,7 +20,9 @@ While the robot moves the ball estimate goes through the localized pose (a ball 
 10 s once seen during the skill) and the head follows it; decisions wait for a sighting taken standing still.
 
 Without walk or turn motions in the library the corresponding moves are skipped (place-and-kick: someone
-else put the robot behind the ball; without turns the kick goes where the robot faces). The foot is the one
+else put the robot behind the ball; without turns the kick goes where the robot faces). Not localized,
+the robot kicks a near ball along its heading and waits (head sweeping) for a pose before walking to a
+farther one, giving up after ``lost_timeout_s``. The foot is the one
 whose spot suits the ball best (the lateral tolerance is tighter outward), chosen anew before each move.
 """
 
@@ -193,10 +195,12 @@ class KickToward(Skill):
         return MotionRequest(None, head_deg=(sweep, -30.0))
 
     def _decide(self, world: WorldModel, motion: MotionController, ball: tuple[float, float]) -> MotionRequest:
+        pose = world.pose
+        if pose is None and math.hypot(*ball) > self.config.approach_far_m:
+            return self._wait_for_pose(world)  # not localized: no aim to walk round for; look at the landmarks
         spots = kick_spots(motion, self.strong)
         aim_rad = self._aim_error_rad(world, ball)
         library = set(motion.library.names)
-        pose = world.pose
         step_m = _step_size(motion, "kick_step_forward", "step_forward_m")
         fine_steps = self.fine_steps
         if self._started_s is not None and world.now_s - self._started_s > self.config.fine_steps_within_s:
@@ -207,8 +211,6 @@ class KickToward(Skill):
         logger.debug("t=%.2f ball (%.3f, %.3f) spot %s error (%+.3f, %+.3f) aim %+.1f deg -> %s %s (%s)",
                      world.now_s, ball[0], ball[1], alignment.spot.motion, alignment.error_f, alignment.error_l,
                      alignment.aim_deg, move.kind, move.motion, move.why)
-        if move.kind == "approach" and pose is None:  # not localized yet: look up at the landmarks for a while
-            return self._wait_for_pose(world)
         self._unlocalized_since_s = None
         if move.kind == "give_up":
             self.done, self.reason = True, move.why
