@@ -254,7 +254,7 @@ def run_real(players: int, duration_s: float, kick_off: str, out: Path) -> Playe
             thread.start()
             deadline = time.monotonic() + 30.0
             while watched.cycles < CONNECT_GAP_CYCLES and time.monotonic() < deadline and thread.is_alive():
-                time.sleep(0.01)
+                time.sleep(0.001)
             if watched.cycles < CONNECT_GAP_CYCLES:
                 notes.setdefault("connect problems", []).append(f"{watched.name}: {watched.cycles} cycles after 30 s")
         clock = agents[0]
@@ -657,6 +657,7 @@ def use_code(revision: str) -> tuple[str, Path]:
 
 
 def main() -> None:
+    global TYPES, CONNECT_GAP_CYCLES
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--players", type=int, default=3, help="players per team (default 3)")
     parser.add_argument("--duration", type=float, default=120.0, help="game time to play [s] (default 120)")
@@ -670,6 +671,9 @@ def main() -> None:
     parser.add_argument("--cli", action="store_true",
                         help="real match with python -m agent processes (the command people use) instead of "
                         "agents in this process; only the monitor's figures then")
+    parser.add_argument("--connect-gap", type=int, default=CONNECT_GAP_CYCLES,
+                        help=f"cycles each agent plays before the next connects, in-process real match "
+                        f"(default {CONNECT_GAP_CYCLES})")
     parser.add_argument("--only", choices=("real", "ours"), help="play one of the two matches only")
     parser.add_argument("--out", type=Path, default=Path("out/real_match_check"), help="logs")
     parser.add_argument("--json", type=Path, help="also write the figures as JSON")
@@ -680,7 +684,7 @@ def main() -> None:
     if not 1 <= args.players <= 11:
         parser.error("--players must be 1-11")
     revision, code_dir = use_code(args.code)
-    global TYPES
+    CONNECT_GAP_CYCLES = args.connect_gap
     if args.types:
         TYPES = tuple(int(t) for t in args.types.split(","))
     import agent  # noqa: PLC0415 - after use_code
