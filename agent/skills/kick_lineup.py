@@ -43,6 +43,8 @@ class KickConfig:
     heading_tol_deg: float = 5.0
     """Aim error corrected with a turn motion when larger [deg] (the ball's direction error follows it one
     to one; the smallest turn motion turns 2°)."""
+    fine_heading_tol_deg: float = 3.0
+    """... and this one while a fine kick step is still allowed (see ``fine_steps_within_s``) [deg]."""
     forward_min_m: float = -0.01
     """Kick window along the kick line: the ball at least this far beyond its spot [m] (nearer, the stance
     toes reach under the ball)..."""
@@ -290,7 +292,8 @@ def plan(config: KickConfig, ball: tuple[float, float], aim_rad: float, spots: l
     # Without turn motions the kick goes where the robot faces: line up along the heading.
     a = align(ball, aim_rad if can_turn else 0.0, spots, config)
     can_correct = corrections < config.max_corrections
-    heading_ok = abs(a.aim_deg) <= config.heading_tol_deg
+    precise = fine_steps < config.max_fine_steps  # early on: worth a small turn too
+    heading_ok = abs(a.aim_deg) <= (config.fine_heading_tol_deg if precise else config.heading_tol_deg)
     kick = Move("kick", a.spot.motion, why="in the window")
     if heading_ok and _in_window(config, a, loose=False):
         return a, kick

@@ -109,3 +109,9 @@ def test_ball_at_the_feet_far_off_the_aim_backs_off_first():
     move = decide((0.2, 0.0), aim_deg=60.0)
     assert (move.kind, move.motion) == ("walk_back", "walk_backward")
     assert CONFIG.backward_walk_m + (move.strides - 1) * CONFIG.backward_stride_m >= CONFIG.room_m - 0.2
+
+
+def test_small_heading_error_is_turned_out_only_while_there_is_time():
+    ball = (0.118 + 0.005, -0.021)
+    assert decide(ball, aim_deg=4.0).kind == "turn"
+    assert decide(ball, aim_deg=4.0, fine_steps=CONFIG.max_fine_steps).kind == "kick"
