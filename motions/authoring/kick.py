@@ -484,5 +484,5 @@ if __name__ == "__main__":
     main()
 
 
-__all__ = ["KICKS", "KickParams", "Pose", "build_all", "build_kick", "kick_params", "kick_poses",
+__all__ = ["KICKS", "STRIKE_PHASES", "KickParams", "Pose", "build_all", "build_kick", "kick_params", "kick_poses",
            "ball_constants", "mirrored_kick", "parse_kick_params", "PoseSolver", "stance_params", "write_all"]

@@ -14,8 +14,8 @@ from kinematics.fk import NaoKinematics
 from motions.authoring.common import FootPose, KeyframeSolver
 from motions.authoring.gait import STANCE_FLAG, build_stance
 from motions.authoring import kick_steps
-from motions.authoring.kick import (FILES_DIR, KickParams, Pose, PoseSolver, ball_constants, build_all, build_kick,
-                                    kick_params, kick_poses, parse_kick_params, stance_params)
+from motions.authoring.kick import (FILES_DIR, STRIKE_PHASES, KickParams, Pose, PoseSolver, ball_constants, build_all,
+                                    build_kick, kick_params, kick_poses, parse_kick_params, stance_params)
 
 SINGLE_SUPPORT = ("lift", "windup", "swing", "strike", "follow", "retract")
 
@@ -64,7 +64,8 @@ def test_starts_and_ends_in_the_walk_stance(kicks):
 
 def test_com_over_the_support_sole_on_one_foot(kicks, fk):
     """In every single-support keyframe the CoM lies over the support sole (left for the right-foot kick),
-    at the target inset/forward offset within 3 mm, and the kicking sole is off the ground."""
+    at the target inset/forward offset within 3 mm (5 mm at the strike and follow-through, whose kicking
+    ankle and hip yaw-pitch are offset after the IK), and the kicking sole is off the ground."""
     for name, support, kicking, side in (("kick", "lsole", "rsole", 1.0), ("kick_left", "rsole", "lsole", -1.0)):
         motion = kicks[name]
         params = kick_params(name.removesuffix("_left"))
@@ -75,8 +76,9 @@ def test_com_over_the_support_sole_on_one_foot(kicks, fk):
             angles = _angles(keyframe)
             sole = fk.frame_pose(support, angles)
             com = sole.rotation.T @ (fk.com(angles) - sole.position_m)
-            assert abs(com[0] - side * params.com_inset_m) < 0.003, (name, phase, com)
-            assert abs(com[1] - params.com_forward_m) < 0.003, (name, phase, com)
+            tolerance = 0.005 if phase in STRIKE_PHASES else 0.003
+            assert abs(com[0] - side * params.com_inset_m) < tolerance, (name, phase, com)
+            assert abs(com[1] - params.com_forward_m) < tolerance, (name, phase, com)
             other = fk.frame_pose(kicking, angles)
             height = (sole.rotation.T @ (other.position_m - sole.position_m))[2]
             assert height > 0.01, (name, phase, height)
