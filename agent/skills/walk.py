@@ -50,6 +50,8 @@ class WalkConfig:
     toward the target [m]."""
     head_deg: tuple[float, float] = (0.0, 0.0)
     """Head (yaw, pitch) while walking [deg, SimSpark signs] (level: landmarks in view for localization)."""
+    corrected_arrive_m: float = 0.25
+    """After at least one short correcting walk the target counts as reached within this distance [m]."""
     max_corrections: int = 6
     """Short correcting walks near the target before WalkTo gives up (``done`` with ``reached`` False)."""
     lean_rate_per_s: float = 2.5
@@ -262,6 +264,11 @@ class WalkTo(Skill):
                 return self._steer.request(None)
             self._correction = None
             self.corrections += 1
+            if math.hypot(forward, left) <= self.config.corrected_arrive_m:
+                # Close enough after a correction: the short walks move more than this error (a side walk
+                # about 0.25 m), so another one only swings past the target to the other side (seen: six
+                # side walks swinging between +-0.13 m until the skill gave up).
+                return self._arrive(motion, reached=True)
             if self.corrections >= self.config.max_corrections:
                 return self._arrive(motion, reached=False)
         if not motion.idle and motion.motion_name in WALKS:
