@@ -58,7 +58,7 @@ CONFIRM_UNLOADED = 3
 CONFIRM_CYCLES = CONFIRM_WINDOW
 #: Cycles upright on loaded feet that end a suspicion (a bump, not a fall).
 BUMP_CYCLES = 12
-RECOVERY_CYCLES = 15
+RECOVERY_CYCLES = 10
 #: After a suspicion, feet unloaded this long also confirm a fall, lying or not (a robot sitting, kneeling or
 #: stuck on its arms); standing and walking keep at least one foot loaded.
 UNLOADED_CYCLES = 50
