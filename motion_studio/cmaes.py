@@ -116,4 +116,34 @@ class CMAES:
                    int(state["generation"]), int(state["popsize"]), int(state["seed"]))
 
 
-__all__ = ["CMAES"]
+__all__ = ["Dimension", "CMAES"]
+
+
+@dataclass(frozen=True)
+class Dimension:
+    """One tuned parameter and its search bounds, mapped to and from the optimiser's [0, 1] box.
+
+    Why shared: every tuner (gait, kick, stand-up) searches a box of named parameters, some of which only
+    take whole numbers or multiples of a cycle (``step``: 1 for counts, 20 for millisecond durations).
+
+    Args:
+        name: the parameter (a dataclass field, or a dotted path the tuner resolves).
+        low, high: bounds in the parameter's own unit.
+        step: values are rounded to a multiple of it and returned as int (0 = continuous).
+        decimals: rounding of continuous values (keeps parameter files readable).
+    """
+
+    name: str
+    low: float
+    high: float
+    step: float = 0.0
+    decimals: int = 4
+
+    def to_unit(self, value: float) -> float:
+        return min(1.0, max(0.0, (value - self.low) / (self.high - self.low)))
+
+    def from_unit(self, unit: float) -> float:
+        value = self.low + min(1.0, max(0.0, float(unit))) * (self.high - self.low)
+        if self.step:
+            return int(round(value / self.step) * self.step)
+        return round(value, self.decimals)

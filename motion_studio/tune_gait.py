@@ -31,7 +31,7 @@ import numpy as np
 
 from agent.motion import MotionLibrary
 from kinematics.errors import IKError
-from motion_studio.cmaes import CMAES
+from motion_studio.cmaes import CMAES, Dimension
 from motion_studio.walk_rollout import Push, WalkRun, run_walk
 from motions.authoring.gait import GaitParams, build_walk, write_gait_files
 from motions.authoring.gait_params import (GAIT_PARAMS_PATH, dumps_gait_params, load_gait_params, provenance,
@@ -44,28 +44,11 @@ DIRECTIONS: dict[str, tuple[float, float]] = {"walk_forward": (1.0, 0.0), "walk_
 CHECKPOINT_DIR = Path("/tmp/nao3d-tune")
 
 
-@dataclass(frozen=True)
-class Dimension:
-    """One tuned parameter: GaitParams field, bounds, integer or not."""
-
-    name: str
-    low: float
-    high: float
-    integer: bool = False
-
-    def to_unit(self, value: float) -> float:
-        return min(1.0, max(0.0, (value - self.low) / (self.high - self.low)))
-
-    def from_unit(self, unit: float) -> float:
-        value = self.low + min(1.0, max(0.0, float(unit))) * (self.high - self.low)
-        return int(round(value)) if self.integer else round(value, 4)
-
-
 #: Search spaces: gait shape (every walk) and posture (the forward walk's, which the stance shares).
 SHAPE = (Dimension("step_height_m", 0.01, 0.05), Dimension("sway_m", 0.0, 0.04),
          Dimension("sway_phase", -0.3, 0.3), Dimension("swing_linear", 0.0, 1.0),
-         Dimension("double_support_cycles", 0, 2, integer=True), Dimension("toe_out_deg", 0.0, 6.0),
-         Dimension("ramp_steps", 1, 4, integer=True))
+         Dimension("double_support_cycles", 0, 2, step=1), Dimension("toe_out_deg", 0.0, 6.0),
+         Dimension("ramp_steps", 1, 4, step=1))
 POSTURE = (Dimension("torso_height_m", 0.30, 0.365), Dimension("torso_pitch_deg", 0.0, 25.0),
            Dimension("torso_forward_m", -0.03, 0.04), Dimension("foot_spacing_m", 0.09, 0.14))
 #: The posture is the shared stance's ([common]; every walk starts from and stops in ``stand``), so it is

@@ -39,7 +39,7 @@ import numpy as np
 
 from agent.motion import MotionLibrary
 from kinematics.errors import IKError
-from motion_studio.cmaes import CMAES
+from motion_studio.cmaes import CMAES, Dimension
 from motion_studio.kick_rollout import KickRun, Placement, run_kick
 from motions.authoring.gait import GaitParams, build_stance
 from motions.authoring.kick import (COMMON, PARAMS_PATH, KickParams, build_kick, kick_params, parse_kick_params,
@@ -59,25 +59,6 @@ PLACEMENTS = (Placement(-0.02, 0.0, 0.0), Placement(-0.015, 0.01, 2.0), Placemen
               Placement(0.01, 0.01, 0.0), Placement(0.015, -0.01, 1.0), Placement(0.02, 0.0, -1.0),
               Placement(0.03, 0.02, 0.0), Placement(0.045, -0.01, 2.0), Placement(0.065, 0.0, -2.0),
               Placement(0.09, 0.01, 0.0))
-
-
-@dataclass(frozen=True)
-class Dimension:
-    """One tuned parameter: KickParams field, bounds, step (integer fields are rounded to the step)."""
-
-    name: str
-    low: float
-    high: float
-    step: float = 0.0
-
-    def to_unit(self, value: float) -> float:
-        return min(1.0, max(0.0, (value - self.low) / (self.high - self.low)))
-
-    def from_unit(self, unit: float) -> float:
-        value = self.low + min(1.0, max(0.0, float(unit))) * (self.high - self.low)
-        if self.step:
-            return int(round(value / self.step) * self.step)
-        return round(value, 4)
 
 
 #: The search space (the ball's spot is part of the kick: it sets where along the swing the foot meets it;
