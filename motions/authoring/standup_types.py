@@ -13,10 +13,11 @@ lengths), crouch and rise put the CoM over that type's soles, and the last keyfr
 Measured on our simulator (6 lying trials per side as the stand-up benchmark draws them, robot type set;
 time to stand [s]): type 4 with these files back 6/6 stood (3.1-3.5 s; with the back timings retuned
 on 2026-11-23, 20 seed-0 draws: 19 in 2.42-2.90 s, one not up after 8 s and 3 attempts), front 6/6
-(2.6-3.3 s); with type 0's files back 1/6, front 6/6 (5.6-6.2 s, after a retry). Type 2 has type 0's geometry and stands with type 0's
-files (back 6/6, front 6/6). Types 1 and 3 (longer legs) are not written: neither these files nor
-foot-and-hand retargeting of the ground phases got them up from the front (0 of 4), and from the back 0-1
-of 4; they need ground phases tuned for their legs. Our team therefore fields types 0, 2 and 4
+(2.6-3.3 s); with type 0's files back 1/6, front 6/6 (5.6-6.2 s, after a retry). Type 2 has type 0's
+geometry and stands with type 0's files (back 6/6, front 6/6). Types 1 and 3 (longer legs) are not
+written: neither these files nor foot-and-hand retargeting of the ground phases got them up from the
+front (0 of 4), and from the back 0-1 of 4; they need ground phases tuned for their legs. Our team
+therefore fields types 0, 2 and 4
 (``agent.team.composition``).
 
 Run ``python -m motions.authoring.standup_types`` after ``python -m motions.authoring.standup``.
