@@ -40,7 +40,7 @@ import numpy as np
 
 from agent.motion import MotionController, MotionLibrary, default_library, load_dynamic_params
 from agent.skills.base import PlayMotion
-from motion_studio.cmaes import CMAES
+from motion_studio.cmaes import CMAES, Dimension
 from motion_studio.scenarios import Scenario
 from motions.authoring.standup import (PARAMS_PATH, STANDUPS, GroundPose, StandUpParams, build_standup,
                                        dumps_section, load_standup_params, read_meta, stance_params, write_all)
@@ -73,23 +73,6 @@ TARGET_S = 6.0
 TIME_WEIGHT = 0.0
 
 
-@dataclass(frozen=True)
-class Dimension:
-    """One tuned parameter: a dotted path (``crouch_ms``, ``ground.1.knee_deg``), bounds, integer or not."""
-
-    path: str
-    low: float
-    high: float
-    integer: bool = False
-
-    def to_unit(self, value: float) -> float:
-        return min(1.0, max(0.0, (value - self.low) / (self.high - self.low)))
-
-    def from_unit(self, unit: float) -> float:
-        value = self.low + min(1.0, max(0.0, float(unit))) * (self.high - self.low)
-        return int(round(value)) if self.integer else round(value, 3)
-
-
 #: Bounds of the ground-phase joints (left side, SimSpark degrees; inside the joint limits) and durations.
 GROUND_BOUNDS: dict[str, tuple[float, float, bool]] = {
     "duration_ms": (60, 600, True), "hip_yaw_pitch_deg": (-89.0, 0.0, False), "hip_roll_deg": (-20.0, 40.0, False),
@@ -108,15 +91,20 @@ POSE_BOUNDS: dict[str, tuple[float, float, bool]] = {
 }
 
 
+def _dimension(path: str, low: float, high: float, integer: bool) -> Dimension:
+    """A tuned parameter named by its dotted path (``crouch_ms``, ``ground.1.knee_deg``)."""
+    return Dimension(path, low, high, step=1 if integer else 0.0, decimals=3)
+
+
 def dimensions(params: StandUpParams, frozen: frozenset[str] = frozenset(), timing_only: bool = False) -> list[Dimension]:
     """Every tuned parameter of a stand-up with its bounds; ``frozen`` names
     ground phases (or ``ready``) kept as they are; ``timing_only`` keeps the ground phases' angles (their
     durations and the crouch / rise parameters are tuned)."""
-    dims = [Dimension(name, *bounds) for name, bounds in POSE_BOUNDS.items()
+    dims = [_dimension(name, *bounds) for name, bounds in POSE_BOUNDS.items()
             if not (name == "ready_ms" and ("ready" in frozen or params.ready_ms == 0))]
     for index, pose in enumerate(params.ground):
         if pose.name not in frozen:
-            dims += [Dimension(f"ground.{index}.{name}", *bounds) for name, bounds in GROUND_BOUNDS.items()
+            dims += [_dimension(f"ground.{index}.{name}", *bounds) for name, bounds in GROUND_BOUNDS.items()
                      if not timing_only or name == "duration_ms"]
     return dims
 
@@ -319,7 +307,7 @@ def tune(section: str, base: StandUpParams, generations: int, starts: tuple[Star
          time_weight: float = TIME_WEIGHT) -> dict:
     """CMA-ES over :func:`dimensions` around ``base``; returns the best {"loss", "values", "result"}."""
     dims = dimensions(base, frozen, timing_only)
-    x0 = np.array([d.to_unit(get_value(base, d.path)) for d in dims])
+    x0 = np.array([d.to_unit(get_value(base, d.name)) for d in dims])
     state = json.loads(checkpoint.read_text()) if checkpoint and checkpoint.is_file() else None
     if state is not None:
         es = CMAES.from_state(state["cmaes"])
@@ -328,14 +316,14 @@ def tune(section: str, base: StandUpParams, generations: int, starts: tuple[Star
     else:
         es = CMAES.create(x0, sigma, popsize, seed)
         first = evaluate(section, base, starts, target_s, time_weight)
-        best = {"loss": first["loss"], "values": {d.path: get_value(base, d.path) for d in dims}, "result": first}
+        best = {"loss": first["loss"], "values": {d.name: get_value(base, d.name) for d in dims}, "result": first}
         log(f"start loss {best['loss']:.3f} {first.get('times_s')}")
     pool = ProcessPoolExecutor(workers) if workers > 1 else None
     try:
         while es.generation < generations:
             started = time.perf_counter()
             candidates = es.ask()
-            values = [{d.path: d.from_unit(u) for d, u in zip(dims, x)} for x in candidates]
+            values = [{d.name: d.from_unit(u) for d, u in zip(dims, x)} for x in candidates]
             packed = [(section, base, v, starts, target_s, time_weight) for v in values]
             results = list(pool.map(_evaluate_packed, packed)) if pool else [_evaluate_packed(p) for p in packed]
             losses = [float(r["loss"]) for r in results]
