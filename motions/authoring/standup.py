@@ -40,10 +40,10 @@ from pathlib import Path
 import numpy as np
 
 from kinematics.fk import NaoKinematics, torso_rotation
-from motions.authoring.common import ARMS, FILES_DIR, LEGS, PARAMS_DIR, KeyframeSolver, header, targets_deg
+from motions.authoring.common import (ARMS, FILES_DIR, LEGS, PARAMS_DIR, KeyframeSolver, header, targets_deg,
+                                      write_xml_motions)
 from motions.authoring.gait import STANCE_FLAG, GaitParams, stance_pose
 from motions.authoring.gait_params import GAIT_PARAMS_PATH, load_gait_params
-from motions.io import save
 from motions.model import XML, Keyframe, Motion
 
 PARAMS_PATH = PARAMS_DIR / "standup.toml"
@@ -447,13 +447,18 @@ def _phase(pose: KeyPose, **attributes: object) -> Keyframe:
 
 
 def build_standup(name: str, params: StandUpParams, side: str, stance: GaitParams,
-                  header_comments: tuple[str, ...] = (), solver: SagittalSolver | None = None) -> Motion:
+                  header_comments: tuple[str, ...] = (), solver: SagittalSolver | None = None,
+                  poses: Sequence[KeyPose] | None = None) -> Motion:
     """The XML phase motion of one stand-up: ground phases, crouch, rise, stance (``in_walk_position``).
+
+    ``poses``: the keyframes from :func:`key_poses` when the caller has them already (for its header), so
+    the IK is not solved twice.
 
     Raises:
         ValueError: a pose out of reach or a phase shorter than one cycle.
     """
-    poses = key_poses(params, side, stance, solver)
+    if poses is None:
+        poses = key_poses(params, side, stance, solver)
     phases = []
     for index, pose in enumerate(poses):
         last = index == len(poses) - 1
@@ -482,6 +487,17 @@ def describe(poses: Sequence[KeyPose]) -> tuple[str, ...]:
     return tuple(f" {pose.name} ({pose.duration_ms} ms): {pose.note} " for pose in poses)
 
 
+def section_params(sections: Mapping[str, StandUpParams], path: Path, name: str) -> StandUpParams:
+    """Section ``name`` of the parameter file ``path`` (already read into ``sections``).
+
+    Raises:
+        ValueError: no such section (the message lists the known ones).
+    """
+    if name not in sections:
+        raise ValueError(f"{path}: no section [{name}]; known: {', '.join(sorted(sections))}")
+    return sections[name]
+
+
 def build_all(path: Path = PARAMS_PATH, gait_path: Path = GAIT_PARAMS_PATH) -> dict[str, Motion]:
     """Both stand-ups: motion name -> Motion (with header comments)."""
     sections = load_standup_params(path)
@@ -490,9 +506,7 @@ def build_all(path: Path = PARAMS_PATH, gait_path: Path = GAIT_PARAMS_PATH) -> d
     command = "python -m motions.authoring.standup"
     out = {}
     for name, side in STANDUPS.items():
-        if name not in sections:
-            raise ValueError(f"{path}: no section [{name}]; known: {', '.join(sorted(sections))}")
-        params = sections[name]
+        params = section_params(sections, path, name)
         meta = read_meta(path, name)
         flat = replace(params, ground=())
         comments = header("motions.authoring.standup", path, name, flat, command)
@@ -503,11 +517,9 @@ def build_all(path: Path = PARAMS_PATH, gait_path: Path = GAIT_PARAMS_PATH) -> d
         comments += describe(poses)
         if meta:
             comments += tuple(f" {key}: {value} ".replace("--", "- -") for key, value in meta.items())
-        out[name] = build_standup(name, params, side, stance, comments, solver)
+        out[name] = build_standup(name, params, side, stance, comments, solver, poses)
     for name in ROLLS:
-        if name not in sections:
-            raise ValueError(f"{path}: no section [{name}]; known: {', '.join(sorted(sections))}")
-        params = sections[name]
+        params = section_params(sections, path, name)
         comments = tuple(c.replace("sagittal IK on kinematics.fk.NaoKinematics, stance by kinematics.ik.WholeBodyIK",
                                    "joint-space keyframes") for c in
                          header("motions.authoring.standup", path, name, replace(params, ground=()), command))
@@ -520,14 +532,7 @@ def build_all(path: Path = PARAMS_PATH, gait_path: Path = GAIT_PARAMS_PATH) -> d
 
 def write_all(out_dir: Path = FILES_DIR, path: Path = PARAMS_PATH, gait_path: Path = GAIT_PARAMS_PATH) -> list[Path]:
     """Generate and write both stand-up files; returns the paths written."""
-    out_dir.mkdir(parents=True, exist_ok=True)
-    written = []
-    for name, motion in build_all(path, gait_path).items():
-        motion.validate()
-        target = out_dir / f"{name}.xml"
-        save(motion, target)
-        written.append(target)
-    return written
+    return write_xml_motions(build_all(path, gait_path), out_dir)
 
 
 def main(argv: list[str] | None = None) -> None:
