@@ -29,7 +29,7 @@ from agent.errors import ConfigError, ServerUnreachable
 from agent.localization import DEFAULT_LOCALIZER, LOCALIZERS
 from agent.protocol.errors import ProtocolError
 from agent.protocol.framing import read_frame, write_frame
-from agent.team.composition import robot_type_for
+from agent.team.composition import parse_robot_type, robot_type_for
 
 logger = logging.getLogger(__name__)
 
@@ -172,15 +172,11 @@ def run(config: AgentConfig, host: str = DEFAULT_HOST, port: int = DEFAULT_PORT,
 
 def _robot_type_arg(text: str) -> int | str:
     """``--type``: 0-4 or ``auto``."""
-    if text == "auto":
-        return text
     try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"robot type must be 0-4 or auto, got {text!r}") from None
-    if not 0 <= value <= 4:
-        raise argparse.ArgumentTypeError(f"robot type must be 0-4 or auto, got {value}")
-    return value
+        value = parse_robot_type(text)
+    except ValueError as error:
+        raise argparse.ArgumentTypeError(str(error)) from None
+    return "auto" if value is None else value
 
 
 def build_parser() -> argparse.ArgumentParser:

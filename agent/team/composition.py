@@ -23,4 +23,21 @@ def robot_type_for(unum: int) -> int:
     return TEAM_TYPES[(unum - 1) % len(TEAM_TYPES)]
 
 
-__all__ = ["TEAM_TYPES", "UNKNOWN_UNUM_TYPE", "robot_type_for"]
+def parse_robot_type(text: str) -> int | None:
+    """A ``--type`` option: 0-4, or None for ``auto`` (then :func:`robot_type_for` decides).
+
+    Raises:
+        ValueError: anything else (the message says what is accepted).
+    """
+    if text == "auto":
+        return None
+    try:
+        value = int(text)
+    except ValueError:
+        raise ValueError(f"robot type must be 0-4 or auto, got {text!r}") from None
+    if not 0 <= value <= 4:
+        raise ValueError(f"robot type must be 0-4 or auto, got {value}")
+    return value
+
+
+__all__ = ["TEAM_TYPES", "UNKNOWN_UNUM_TYPE", "parse_robot_type", "robot_type_for"]

@@ -23,14 +23,13 @@ def agent_command(
 ) -> None:
     """Connect to HOST:PORT, join TEAM as UNUM and play until the server goes away."""
     from agent.runner import run_cli
-    from agent.team.composition import robot_type_for
+    from agent.team.composition import parse_robot_type, robot_type_for
 
-    if robot_type == "auto":
-        chosen = robot_type_for(unum)
-    elif robot_type in {"0", "1", "2", "3", "4"}:
-        chosen = int(robot_type)
-    else:
-        raise typer.BadParameter(f"robot type must be 0-4 or auto, got {robot_type!r}", param_hint="--type")
-    code = run_cli(host, port, team, unum, chosen, localization, attempts, behavior)
+    try:
+        chosen = parse_robot_type(robot_type)
+    except ValueError as error:
+        raise typer.BadParameter(str(error), param_hint="--type") from None
+    code = run_cli(host, port, team, unum, robot_type_for(unum) if chosen is None else chosen, localization,
+                   attempts, behavior)
     if code:
         raise typer.Exit(code)
