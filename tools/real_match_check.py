@@ -645,11 +645,11 @@ def use_code(revision: str) -> tuple[str, Path]:
     if revision == "worktree":
         sys.path.insert(0, str(REPO))
         return "worktree", REPO
-    short = subprocess.run(["git", "-C", str(REPO), "rev-parse", "--short", revision], check=True,
-                           capture_output=True, text=True).stdout.strip()
-    folder = Path(tempfile.mkdtemp(prefix=f"real_match_{short}_"))
-    archive = subprocess.run(["git", "-C", str(REPO), "archive", short], check=True, capture_output=True).stdout
-    subprocess.run(["tar", "-x", "-C", str(folder)], input=archive, check=True)
+    # This script's folder is first on sys.path; git_export imports nothing of the project.
+    from git_export import export_revision, short_revision
+
+    short = short_revision(revision)
+    folder = export_revision(short, Path(tempfile.mkdtemp(prefix=f"real_match_{short}_")))
     sys.path.insert(0, str(folder))
     if not (folder / "tools" / "real_server.py").exists():  # a revision before tools/real_server.py
         sys.path.insert(1, str(REPO))

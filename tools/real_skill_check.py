@@ -33,7 +33,6 @@ import json
 import math
 import os
 import re
-import subprocess
 import sys
 import tempfile
 import time
@@ -44,6 +43,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from agent.agent import Agent, AgentConfig  # noqa: E402
+from tools.git_export import export_revision, short_revision  # noqa: E402
 from agent.protocol.effectors import Action, JointVelocity  # noqa: E402
 from agent.protocol.errors import ProtocolError  # noqa: E402
 from agent.protocol.framing import read_frame, write_frame  # noqa: E402
@@ -215,12 +215,7 @@ MOTIONS_REVISION = "worktree"
 def export_motions(revision: str, into: Path) -> Path:
     """The motion files and dynamic elements of a git revision, exported into ``into`` (the working tree
     may hold other helpers' unfinished motions). Returns the folder holding ``files/`` and ``params/``."""
-    repo = Path(__file__).resolve().parents[1]
-    archive = subprocess.run(["git", "-C", str(repo), "archive", revision, "motions/files", "motions/params"],
-                             check=True, capture_output=True).stdout
-    into.mkdir(parents=True, exist_ok=True)
-    subprocess.run(["tar", "-x", "-C", str(into)], input=archive, check=True)
-    return into / "motions"
+    return export_revision(revision, into, "motions/files", "motions/params") / "motions"
 
 
 def _controller():  # noqa: ANN202 - agent.motion.MotionController
@@ -580,8 +575,7 @@ def main() -> None:
     global MOTIONS_DIR, MOTIONS_REVISION
     revision = "worktree"
     if args.motions != "worktree":
-        revision = subprocess.run(["git", "rev-parse", "--short", args.motions], check=True, capture_output=True,
-                                  text=True, cwd=Path(__file__).resolve().parents[1]).stdout.strip()
+        revision = short_revision(args.motions)
         MOTIONS_DIR = export_motions(revision, Path(tempfile.mkdtemp(prefix="motions_")))
     MOTIONS_REVISION = revision
     print(f"motions: {revision}", flush=True)
