@@ -1,7 +1,9 @@
 """Standing up on our simulator with the real agent: a robot laid on its back or its front notices the fall by
 itself (gyro/accelerometer, feet unloaded), plays the stand-up of that side and ends standing on loaded
 feet within a bounded time; a robot knocked over while standing recovers the same way (SkillBehavior's
-fall recovery), judged by the simulator's truth."""
+fall recovery), judged by the simulator's truth. The other robot types our team fields
+(agent.team.composition: 0, 2, 4) stand up too: type 4 with its own stand-ups (motions/files/type4/), type 2
+with type 0's."""
 
 from __future__ import annotations
 
@@ -36,8 +38,8 @@ def _time_to_stand(scenario: Scenario) -> float | None:
     return None
 
 
-def _standing_robot(seed: int = 0) -> Scenario:
-    scenario = Scenario(PlayMotion("stand"), seed=seed)
+def _standing_robot(seed: int = 0, robot_type: int = 0) -> Scenario:
+    scenario = Scenario(PlayMotion("stand"), seed=seed, robot_type=robot_type)
     scenario.run(STANCE_CYCLES)
     return scenario
 
@@ -76,3 +78,14 @@ def test_a_walking_robot_is_not_taken_for_fallen(walk):
         assert not truth.fallen, f"{walk} fell"
         assert not scenario.behavior.fall_watch.fallen and not scenario.behavior.recovering
     assert scenario.behavior.standup.attempts == 0
+
+
+@pytest.mark.parametrize("robot_type", [2, 4])
+@pytest.mark.parametrize("side,yaw_deg", [("back", 30.0), ("front", -120.0)])
+def test_a_robot_of_our_other_types_laid_down_stands_up(robot_type, side, yaw_deg):
+    scenario = _standing_robot(seed=1, robot_type=robot_type)
+    scenario.lay_down(side, yaw_deg)
+    assert all(t.fallen for t in scenario.run(10))
+    assert _time_to_stand(scenario) is not None, \
+        f"type {robot_type} still not standing {LIMIT_S} s after the lay-down on its {side}"
+    assert not any(t.fallen for t in scenario.run(25))
