@@ -33,8 +33,8 @@ import math
 
 from agent.motion import MotionController, MotionRequest
 from agent.skills.base import Skill
-from agent.skills.kick_lineup import KickConfig, Move, Spot, plan
-from agent.skills.walk import WalkConfig, WalkTo, report_walk_odometry
+from agent.skills.kick_lineup import STEP_FORWARD, KickConfig, Move, Spot, plan
+from agent.skills.walk import FORWARD, TURN_LEFT, TURN_RIGHT, WalkConfig, WalkTo, report_walk_odometry
 from agent.world.frames import wrap_angle_rad
 from agent.world_model import WorldModel
 
@@ -43,9 +43,9 @@ logger = logging.getLogger(__name__)
 CYCLE_S = 0.02
 KICK, STRONG = "kick", "kick_strong"
 LEFT_SUFFIX = "_left"
-TURNS = ("turn_left", "turn_right")
-#: Lean rate limit of the walks this skill steers [1/s] (as ``agent.skills.walk``: a sudden lean can topple).
-LEAN_RATE_PER_S = 2.5
+TURNS = (TURN_LEFT, TURN_RIGHT)
+#: Lean rate limit of the walks this skill steers [1/s]: the walk skills' (a sudden lean can topple).
+LEAN_RATE_PER_S = WalkConfig.lean_rate_per_s
 
 
 def _step_size(motion: MotionController, name: str, key: str) -> float:
@@ -201,7 +201,7 @@ class KickToward(Skill):
         spots = kick_spots(motion, self.strong)
         aim_rad = self._aim_error_rad(world, ball)
         library = set(motion.library.names)
-        step_m = _step_size(motion, "kick_step_forward", "step_forward_m")
+        step_m = _step_size(motion, STEP_FORWARD, "step_forward_m")
         fine_steps = self.fine_steps
         if self._started_s is not None and world.now_s - self._started_s > self.config.fine_steps_within_s:
             fine_steps = self.config.max_fine_steps  # too late for precision
@@ -303,7 +303,7 @@ class KickToward(Skill):
             error_deg = math.degrees(wrap_angle_rad(self._heading_team_rad - pose.heading_rad))
         config = self.config
         wanted = max(-config.max_lean, min(config.max_lean, error_deg / config.lean_full_deg * config.max_lean))
-        if not phase.startswith("cycle") or move.motion != "walk_forward":
+        if not phase.startswith("cycle") or move.motion != FORWARD:
             wanted = 0.0  # the lean acts in the cycle phases only; start from 0 there
         step = LEAN_RATE_PER_S * CYCLE_S
         self._lean += max(-step, min(step, wanted - self._lean))

@@ -27,8 +27,10 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-TURN_LEFT, TURN_RIGHT = "turn_left", "turn_right"
-FORWARD, BACKWARD, SIDE_LEFT, SIDE_RIGHT = "walk_forward", "walk_backward", "walk_left", "walk_right"
+from agent.skills.walk import BACKWARD, FORWARD, TURN_LEFT, TURN_RIGHT
+from agent.skills.walk import LEFT as SIDE_LEFT
+from agent.skills.walk import RIGHT as SIDE_RIGHT
+
 STEP_FORWARD, STEP_BACKWARD = "kick_step_forward", "kick_step_backward"
 STEP_LEFT, STEP_RIGHT = "kick_step_left", "kick_step_right"
 #: What a kick step moves (``motions.authoring.kick_steps``) [m]; planning only needs it roughly.
