@@ -54,7 +54,9 @@ sessions), benchmarks/bench_sim.py.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+import tomllib
+from dataclasses import dataclass, fields, replace
+from pathlib import Path
 
 
 @dataclass(frozen=True)
@@ -84,6 +86,8 @@ class PhysicsParams:
     lets it (calibrated on the real 0.7.3 traces, see the module docstring)."""
     cone: str = "elliptic"
     """Friction cone: "elliptic" or "pyramidal"."""
+    impratio: float = 1.0
+    """MuJoCo's frictional-to-normal impedance ratio of elliptic cones (> 1: stiffer friction, less creep)."""
     ball_solref: tuple[float, float] = (0.02, 1.0)
     """solref of the ball's contacts (MuJoCo's default)."""
     ball_solimp: tuple[float, float, float, float, float] = (0.9, 0.95, 0.001, 0.5, 2.0)
@@ -109,13 +113,40 @@ class PhysicsParams:
         return self.cycle_s / self.substeps
 
 
+#: The calibrated values (``motion-studio calibrate --write``), with their provenance; they override the
+#: dataclass defaults above.
+CALIBRATED_FILE = Path(__file__).with_name("physics_calibrated.toml")
+
+
+def load_physics_file(path: Path) -> dict[str, object]:
+    """The ``[physics]`` table of a calibration file as `PhysicsParams` field values (tuples for lists).
+
+    Raises:
+        ValueError: the file is not TOML or names an unknown field (the message names the file and key).
+    """
+    try:
+        table = tomllib.loads(path.read_text(encoding="utf-8")).get("physics", {})
+    except tomllib.TOMLDecodeError as error:
+        raise ValueError(f"{path}: not TOML ({error})") from None
+    known = {f.name for f in fields(PhysicsParams)}
+    values: dict[str, object] = {}
+    for key, value in table.items():
+        if key not in known:
+            raise ValueError(f"{path}: unknown physics parameter {key!r}")
+        values[key] = tuple(value) if isinstance(value, list) else value
+    return values
+
+
 def default_physics_params(**overrides: object) -> PhysicsParams:
-    """The default parameters, with named overrides (e.g. ``default_physics_params(substeps=4)``).
+    """The default parameters (the calibrated file over the dataclass defaults), with named overrides
+    (e.g. ``default_physics_params(substeps=4)``).
 
     Raises:
         TypeError: an override names no field (the message lists the fields).
     """
     base = PhysicsParams()
+    if CALIBRATED_FILE.is_file():
+        base = replace(base, **load_physics_file(CALIBRATED_FILE))  # type: ignore[arg-type]
     unknown = set(overrides) - set(PhysicsParams.__dataclass_fields__)
     if unknown:
         raise TypeError(f"unknown physics parameter(s) {sorted(unknown)}; known: "

@@ -145,6 +145,7 @@ class World:
         spec.option.integrator = mujoco.mjtIntegrator.mjINT_DISCRETE
         spec.option.cone = (mujoco.mjtCone.mjCONE_ELLIPTIC if p.cone == "elliptic"
                             else mujoco.mjtCone.mjCONE_PYRAMIDAL)
+        spec.option.impratio = p.impratio
         spec.option.solver = mujoco.mjtSolver.mjSOL_NEWTON
         spec.option.iterations = p.solver_iterations
         # No BVH midphase: it only culls geom pairs (MuJoCo sorts its contacts into the order found without it,

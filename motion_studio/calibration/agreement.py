@@ -1,0 +1,149 @@
+"""How far a replay on our simulator is from the real recording: named measures, each scaled to an error.
+
+Each measure compares one figure of the real run with ours (the distance walked, the turn, the torso height,
+when the robot fell, how far the ball went, how the leg joints followed) and divides the difference by a
+scale: the difference that matters for a skill (10 cm of a walk, 5 degrees of a turn, 1 cm of height, a
+fall 10 cycles early). An error of 1 is "just noticeable for a skill"; errors are capped at `ERROR_CAP` so one
+broken trace cannot hide the others. The score of a trace is the mean of its errors.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from motion_studio.calibration.replay import Replay
+from motion_studio.calibration.traces import Pose
+
+#: REFERENCE §8.1's fall criterion: up-axis z below this [-] or torso centre below FALL_TORSO_Z_M [m].
+FALL_UP_Z = 0.6
+FALL_TORSO_Z_M = 0.25
+ERROR_CAP = 5.0
+LEG_JOINTS = tuple(f"{side}lj{n}" for side in "lr" for n in range(1, 7))
+#: Cycles of the skill phase over which leg joints are compared (open loop, errors add up after that).
+JOINT_WINDOW_CYCLES = 150
+
+
+@dataclass(frozen=True)
+class Measure:
+    """One compared figure: name, real value, our value, unit, and the error (difference / scale, capped)."""
+
+    name: str
+    real: float
+    ours: float
+    unit: str
+    error: float
+
+
+def _measure(name: str, real: float, ours: float, scale: float, unit: str) -> Measure:
+    error = abs(ours - real) / scale if math.isfinite(ours) and math.isfinite(real) else ERROR_CAP
+    return Measure(name, real, ours, unit, min(error, ERROR_CAP))
+
+
+def turned_deg(poses: dict[int, Pose], cycles: list[int]) -> float:
+    """Heading change summed cycle by cycle (unwrapped) [deg]."""
+    headings = [poses[i].heading_deg for i in cycles]
+    return float(sum((b - a + 180.0) % 360.0 - 180.0 for a, b in zip(headings, headings[1:])))
+
+
+def displacement_m(poses: dict[int, Pose], cycles: list[int]) -> tuple[float, float]:
+    """(forward, left) of the last pose in the frame of the first [m]."""
+    first, last = poses[cycles[0]], poses[cycles[-1]]
+    c, s = math.cos(math.radians(first.heading_deg)), math.sin(math.radians(first.heading_deg))
+    dx, dy = last.torso_m[0] - first.torso_m[0], last.torso_m[1] - first.torso_m[1]
+    return c * dx + s * dy, -s * dx + c * dy
+
+
+def first_fall(poses: dict[int, Pose], cycles: list[int]) -> int | None:
+    """Index in ``cycles`` of the first fallen pose, None if the robot stayed up."""
+    return next((k for k, i in enumerate(cycles)
+                 if poses[i].up_z < FALL_UP_Z or poses[i].torso_m[2] < FALL_TORSO_Z_M), None)
+
+
+def stood_up_after_fall(poses: dict[int, Pose], cycles: list[int], height_m: float = 0.30,
+                        hold_cycles: int = 50) -> int | None:
+    """Index in ``cycles`` where the torso centre has been above ``height_m`` for ``hold_cycles`` after the first
+    fall, None if never (the transfer issue's "stood up": height held 1 s, not tilt alone)."""
+    fallen = first_fall(poses, cycles)
+    if fallen is None:
+        return None
+    run = 0
+    for k in range(fallen, len(cycles)):
+        run = run + 1 if poses[cycles[k]].torso_m[2] > height_m else 0
+        if run >= hold_cycles:
+            return k - hold_cycles + 1
+    return None
+
+
+def measures(replay: Replay) -> list[Measure]:
+    """The measures that apply to ``replay``'s trace (skill traces by their truth, scripted ones by sensors)."""
+    if replay.real:
+        return _pose_measures(replay) + _joint_measures(replay, LEG_JOINTS, 2.0)
+    return _joint_measures(replay, None, 1.0) + _force_measures(replay)
+
+
+def _pose_measures(replay: Replay) -> list[Measure]:
+    real, ours = replay.real, replay.ours
+    cycles = [i for i in sorted(real) if i >= replay.trace.skill_cycle and i in ours]
+    if len(cycles) < 2:
+        return []
+    out: list[Measure] = []
+    real_move, our_move = displacement_m(real, cycles), displacement_m(ours, cycles)
+    walked = math.hypot(*real_move)
+    out.append(Measure("displacement_m", walked, math.hypot(*our_move), "m",
+                       min(math.dist(real_move, our_move) / (0.1 + 0.1 * walked), ERROR_CAP)))
+    # A lying torso's heading is meaningless (its forward axis points up or down): turns count while both stand.
+    falls = [k for k in (first_fall(real, cycles), first_fall(ours, cycles)) if k is not None]
+    upright = cycles[:min(falls)] if falls else cycles
+    if len(upright) > 1:
+        real_turn = turned_deg(real, upright)
+        out.append(_measure("turn_deg", real_turn, turned_deg(ours, upright), 5.0 + 0.05 * abs(real_turn), "deg"))
+    heights = np.array([[real[i].torso_m[2], ours[i].torso_m[2]] for i in cycles])
+    out.append(Measure("height_m", float(heights[:, 0].mean()), float(heights[:, 1].mean()), "m",
+                       min(float(np.abs(heights[:, 0] - heights[:, 1]).mean()) / 0.01, ERROR_CAP)))
+    real_fall, our_fall = first_fall(real, cycles), first_fall(ours, cycles)
+    nan = float("nan")
+    if (real_fall is None) != (our_fall is None):
+        out.append(Measure("fall_cycle", nan if real_fall is None else real_fall,
+                           nan if our_fall is None else our_fall, "cycle", 3.0))
+    elif real_fall is not None and our_fall is not None:
+        out.append(_measure("fall_cycle", real_fall, our_fall, 10.0, "cycle"))
+        after = slice(real_fall, None)
+        out.append(_measure("peak_height_after_fall_m", max(h for h in heights[after, 0]),
+                            max(h for h in heights[after, 1]), 0.03, "m"))
+    ball_real = math.dist(real[cycles[0]].ball_m[:2], real[cycles[-1]].ball_m[:2])
+    ball_ours = math.dist(ours[cycles[0]].ball_m[:2], ours[cycles[-1]].ball_m[:2])
+    if max(ball_real, ball_ours) > 0.05:
+        out.append(_measure("ball_travel_m", ball_real, ball_ours, 0.1 + 0.2 * ball_real, "m"))
+    return out
+
+
+def _joint_measures(replay: Replay, joints: tuple[str, ...] | None, scale_deg: float) -> list[Measure]:
+    start = replay.trace.skill_cycle
+    stop = min(len(replay.trace.received), len(replay.our_messages), start + JOINT_WINDOW_CYCLES)
+    errors = []
+    for i in range(start, stop):
+        real, ours = replay.sense("real", i).joints, replay.sense("ours", i).joints
+        names = joints or tuple(real)
+        errors.extend(ours[n] - real[n] for n in names if n in ours and n in real)
+    if not errors:
+        return []
+    rms = float(np.sqrt(np.mean(np.square(errors))))
+    return [Measure("joint_rms_deg", 0.0, rms, "deg", min(rms / scale_deg, ERROR_CAP))]
+
+
+def _force_measures(replay: Replay) -> list[Measure]:
+    stop = min(len(replay.trace.received), len(replay.our_messages))
+    real, ours = [], []
+    for i in range(stop):
+        real.append(sum(f.force_n[2] for f in replay.sense("real", i).frp.values()))
+        ours.append(sum(f.force_n[2] for f in replay.sense("ours", i).frp.values()))
+    rms = float(np.sqrt(np.mean(np.square(np.array(ours) - np.array(real)))))
+    return [Measure("foot_force_rms_n", 0.0, rms, "N", min(rms / 10.0, ERROR_CAP))]
+
+
+def score(found: list[Measure]) -> float:
+    """A trace's error: the mean of its measures' errors (0 = agrees)."""
+    return float(np.mean([m.error for m in found])) if found else 0.0

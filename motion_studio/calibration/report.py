@@ -1,0 +1,94 @@
+"""Tables, plots and the calibrated-parameter file of a calibration run."""
+
+from __future__ import annotations
+
+import datetime
+import subprocess
+from pathlib import Path
+
+from motion_studio.calibration.fit import Evaluation
+
+
+def agreement_table(before: Evaluation, after: Evaluation | None = None) -> str:
+    """Per-trace score (0 = agrees) before and after, with each trace's worst measure."""
+    lines = [f"{'trace':32s} {'before':>7s}" + (f" {'after':>7s}" if after else "") + "  worst measure (real / ours)"]
+    for name, score in before.scores.items():
+        shown = after or before
+        worst = max(shown.details[name], key=lambda m: m.error, default=None)
+        text = (f"{worst.name} {worst.real:.3g} / {worst.ours:.3g} {worst.unit}" if worst else "-")
+        line = f"{name:32s} {score:7.2f}" + (f" {after.scores[name]:7.2f}" if after else "")
+        lines.append(f"{line}  {text}")
+    total = f"{'objective (mean + blow-ups)':32s} {before.objective:7.3f}" + (f" {after.objective:7.3f}" if after else "")
+    lines.append(total)
+    return "\n".join(lines)
+
+
+def plot_agreement(before: Evaluation, after: Evaluation | None, path: Path) -> Path:
+    """A bar chart of the per-trace scores before and after, as PNG."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    names = list(before.scores)
+    fig, ax = plt.subplots(figsize=(10, 0.35 * len(names) + 1.5))
+    y = range(len(names))
+    ax.barh([i + 0.2 for i in y], [before.scores[n] for n in names], height=0.4, label="before")
+    if after:
+        ax.barh([i - 0.2 for i in y], [after.scores[n] for n in names], height=0.4, label="after")
+    ax.set_yticks(list(y), names)
+    ax.invert_yaxis()
+    ax.set_xlabel("disagreement with the real rcssserver3d (0 = same; 1 = noticeable for a skill)")
+    ax.legend()
+    fig.tight_layout()
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+    return path
+
+
+def _revision() -> str:
+    try:
+        return subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True,
+                              check=True).stdout.strip()
+    except (OSError, subprocess.CalledProcessError):
+        return "unknown"
+
+
+def write_physics_file(path: Path, after: Evaluation, before: Evaluation, command: str, traces: list[str]) -> None:
+    """Write the fitted values as ``[physics]`` with a provenance header (command, date, revision, figures)."""
+    lines = [
+        "# Physical parameters of our MuJoCo world fitted to real rcssserver3d 0.7.3 recordings; they override",
+        "# the defaults of sim/physics_params.py (see its docstring for what each means).",
+        f"# Made by: {command}",
+        f"# Date: {datetime.date.today().isoformat()}, revision {_revision()}",
+        f"# Traces: {', '.join(traces)}",
+        f"# Objective (mean per-trace disagreement, 0 = same): {before.objective:.3f} before, {after.objective:.3f} after",
+        "",
+        "[physics]",
+    ]
+    for name, value in _grouped(after.values).items():
+        lines.append(f"{name} = {value!r}".replace("(", "[").replace(")", "]"))
+    path.write_text("\n".join(lines) + "\n", encoding="utf-8")
+
+
+def _grouped(values: dict[str, float]) -> dict[str, object]:
+    """``contact_solimp[0]`` etc. gathered into full tuples (missing elements from the defaults)."""
+    from sim.physics_params import PhysicsParams
+
+    out: dict[str, object] = {}
+    defaults = PhysicsParams()
+    for name, value in values.items():
+        if name.endswith("]"):
+            field, index = name[:-1].split("[")
+            current = list(out.get(field, getattr(defaults, field)))  # type: ignore[arg-type]
+            current[int(index)] = value
+            out[field] = tuple(current)
+        else:
+            out[name] = value
+    for field, value in list(out.items()):
+        if field == "contact_solimp":
+            solimp = list(value)  # type: ignore[arg-type]
+            solimp[1] = max(solimp[0], solimp[1])
+            out[field] = tuple(solimp)
+    return out

@@ -1,0 +1,83 @@
+"""``motion-studio calibrate``: fit our world's contact parameters to recorded real-server traces."""
+
+from __future__ import annotations
+
+import logging
+import shlex
+import sys
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
+from motion_studio.cli import app
+
+PROJECT = Path(__file__).resolve().parents[2]
+
+
+@app.command()
+def calibrate(
+    traces: Annotated[Path, typer.Option(help="folder of recorded real traces (real_*.jsonl[.gz])")] =
+        PROJECT / "tests" / "sim" / "fixtures",
+    generations: Annotated[int, typer.Option(min=0, max=500, help="CMA-ES generations (0: only report the "
+                                                                  "agreement of the current parameters)")] = 0,
+    popsize: Annotated[int, typer.Option(min=4, max=64, help="candidates per generation")] = 10,
+    seed: Annotated[int, typer.Option(help="seed of the optimiser")] = 0,
+    out: Annotated[Path, typer.Option(help="run folder: checkpoint, evaluations.jsonl, agreement.png")] =
+        Path("out/calibrate"),
+    write: Annotated[bool, typer.Option(help="write the fitted values into sim/physics_calibrated.toml")] = False,
+) -> None:
+    """Replay every real trace on our simulator, print the agreement per trace, and with --generations fit the
+    contact parameters (friction, impratio, solimp, solref) to them; a killed fit resumes from --out."""
+    from motion_studio.calibration.errors import CalibrationError
+    from motion_studio.calibration.fit import DEFAULT_PARAMETERS, evaluate, fit
+    from motion_studio.calibration.report import agreement_table, plot_agreement, write_physics_file
+    from motion_studio.calibration.traces import find_traces, load_trace
+    from sim.physics_params import CALIBRATED_FILE, default_physics_params
+
+    paths = find_traces(traces)
+    if not paths:
+        typer.echo(f"error: --traces {traces}: no real_*.jsonl[.gz] trace files there", err=True)
+        raise typer.Exit(2)
+    loaded = []
+    for path in paths:
+        try:
+            loaded.append(load_trace(path))
+        except CalibrationError as error:
+            typer.echo(f"skipped: {error}", err=True)
+    if not loaded:
+        raise typer.Exit(2)
+    logging.getLogger("sim").setLevel(logging.ERROR)   # blow-ups are counted in the objective
+    base = default_physics_params()
+    before = evaluate(loaded, base)
+    after = None
+    if generations:
+        from tqdm import tqdm
+
+        bar = tqdm(total=generations * popsize, desc="calibrate", unit="replay set")
+        best = [before.objective]
+
+        def progress(generation: int, result) -> None:  # noqa: ANN001 - fit.Evaluation
+            if generation >= 0:
+                best[0] = min(best[0], result.objective)
+                bar.set_postfix(best=f"{best[0]:.3f}")
+                bar.update(1)
+
+        try:
+            after = fit(loaded, base, DEFAULT_PARAMETERS, out, generations, popsize, seed=seed, on_evaluation=progress)
+        except CalibrationError as error:
+            bar.close()
+            typer.echo(f"error: {error}", err=True)
+            raise typer.Exit(2) from None
+        bar.close()
+    typer.echo(agreement_table(before, after))
+    png = plot_agreement(before, after, out / "agreement.png")
+    typer.echo(f"plot: {png}")
+    if after is not None:
+        typer.echo(f"fitted: {after.values}")
+        if write and after.objective < before.objective:
+            command = "motion-studio " + " ".join(shlex.quote(a) for a in sys.argv[1:])
+            write_physics_file(CALIBRATED_FILE, after, before, command, [t.name for t in loaded])
+            typer.echo(f"written: {CALIBRATED_FILE}")
+        elif write:
+            typer.echo("not written: the fit found nothing better than the current parameters")

@@ -1,0 +1,96 @@
+"""motion-studio calibrate: real traces load with located errors, replay on the real MuJoCo world, and the
+agreement measures tell a faithful world from a broken one."""
+
+from __future__ import annotations
+
+import gzip
+import json
+import subprocess
+import sys
+from dataclasses import replace
+from pathlib import Path
+
+import pytest
+
+from motion_studio.calibration.agreement import measures, score, stood_up_after_fall
+from motion_studio.calibration.errors import CalibrationError
+from motion_studio.calibration.fit import evaluate, with_values
+from motion_studio.calibration.replay import replay_trace
+from motion_studio.calibration.report import write_physics_file
+from motion_studio.calibration.traces import Pose, find_traces, load_trace
+from sim.physics_params import default_physics_params, load_physics_file
+
+FIXTURES = Path(__file__).parents[1] / "sim" / "fixtures"
+
+
+def test_every_fixture_loads() -> None:
+    paths = find_traces(FIXTURES)
+    assert len(paths) >= 15
+    for path in paths:
+        trace = load_trace(path)
+        assert trace.received and -1 in trace.replies
+
+
+def test_a_corrupt_line_is_named_with_file_and_line(tmp_path: Path) -> None:
+    rows = [json.dumps({"k": "send", "i": -1, "msg": "(scene rsg/agent/nao/nao.rsg)"}),
+            json.dumps({"k": "recv", "msg": "(time (now 1.00))"}), "{not json", ""]
+    path = tmp_path / "real_0.7.3_broken.jsonl.gz"
+    with gzip.open(path, "wt") as stream:
+        stream.write("\n".join(rows))
+    with pytest.raises(CalibrationError, match=r"real_0.7.3_broken.jsonl.gz:3: not JSON"):
+        load_trace(path)
+
+
+def test_a_line_without_its_field_is_named(tmp_path: Path) -> None:
+    path = tmp_path / "real_x.jsonl"
+    path.write_text(json.dumps({"k": "send", "i": -1, "msg": "(scene a)"}) + "\n" + json.dumps({"k": "recv"}) + "\n")
+    with pytest.raises(CalibrationError, match=r"real_x.jsonl:2: missing field 'msg'"):
+        load_trace(path)
+
+
+def test_a_missing_trace_is_named(tmp_path: Path) -> None:
+    with pytest.raises(CalibrationError, match="no such trace file"):
+        load_trace(tmp_path / "real_none.jsonl.gz")
+
+
+def test_the_standing_replay_agrees_and_a_walk_tells_broken_friction() -> None:
+    stand = replay_trace(load_trace(FIXTURES / "real_0.7.3_skill_stand.jsonl.gz"))
+    assert score(measures(stand)) < 0.2   # measured 0.02: height within 1 mm, no drift
+    walk = load_trace(FIXTURES / "real_0.7.3_skill_walk_left.jsonl.gz")
+    faithful = score(measures(replay_trace(walk)))
+    icy = score(measures(replay_trace(walk, default_physics_params(friction=0.05))))
+    assert faithful < 1.0            # measured 0.68
+    assert icy > faithful + 0.5      # feet that slide cannot walk 2.6 m sideways
+
+
+def test_stood_up_needs_the_torso_high_for_a_second_not_tilt_alone() -> None:
+    lying = Pose((0, 0, 0.12), 0.1, 0, (0, 0, 0))
+    tilted_low = Pose((0, 0, 0.27), 0.99, 0, (0, 0, 0))   # upright torso but crouched: not stood
+    up = Pose((0, 0, 0.33), 0.99, 0, (0, 0, 0))
+    low = {i: lying for i in range(20)} | {i: tilted_low for i in range(20, 200)}
+    assert stood_up_after_fall(low, list(range(200))) is None
+    high = {i: lying for i in range(20)} | {i: up for i in range(20, 200)}
+    assert stood_up_after_fall(high, list(range(200))) == 20
+
+
+def test_fitted_values_round_trip_through_the_physics_file(tmp_path: Path) -> None:
+    trace = load_trace(FIXTURES / "real_0.7.3_stand.jsonl.gz")
+    base = default_physics_params()
+    values = {"friction": 3.5, "contact_solimp[0]": 0.4, "contact_solimp[1]": 0.3}
+    fitted = with_values(base, values)
+    assert fitted.contact_solimp[:2] == (0.4, 0.4)   # dmax raised to dmin, as MuJoCo needs
+    before, after = evaluate([trace], base), evaluate([trace], fitted, values)
+    path = tmp_path / "physics.toml"
+    write_physics_file(path, after, before, "motion-studio calibrate --generations 1", ["stand"])
+    text = path.read_text()
+    assert text.startswith("# Physical parameters") and "motion-studio calibrate --generations 1" in text
+    loaded = load_physics_file(path)
+    assert loaded["friction"] == 3.5 and loaded["contact_solimp"][:2] == (0.4, 0.4)
+    assert replace(base, **loaded) == fitted
+
+
+def test_cli_error_is_one_line(tmp_path: Path) -> None:
+    result = subprocess.run([sys.executable, "-m", "motion_studio", "calibrate", "--traces", str(tmp_path)],
+                            capture_output=True, text=True, timeout=120)
+    assert result.returncode == 2
+    assert result.stderr.strip().count("\n") == 0 and "no real_*.jsonl" in result.stderr
