@@ -107,6 +107,9 @@ class PhysicsParams:
     """Angular drag per robot body [N·m·s/rad]."""
     solver_iterations: int = 50
     """Main solver iterations (Newton)."""
+    noslip_iterations: int = 0
+    """Iterations of MuJoCo's no-slip post-solve (0 = off): removes the slip the soft friction rows leave, as
+    SimSpark's unbounded friction with its small force-dependent slip all but does."""
 
     @property
     def timestep_s(self) -> float:

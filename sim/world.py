@@ -146,6 +146,7 @@ class World:
         spec.option.cone = (mujoco.mjtCone.mjCONE_ELLIPTIC if p.cone == "elliptic"
                             else mujoco.mjtCone.mjCONE_PYRAMIDAL)
         spec.option.impratio = p.impratio
+        spec.option.noslip_iterations = p.noslip_iterations
         spec.option.solver = mujoco.mjtSolver.mjSOL_NEWTON
         spec.option.iterations = p.solver_iterations
         # No BVH midphase: it only culls geom pairs (MuJoCo sorts its contacts into the order found without it,
