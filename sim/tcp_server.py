@@ -10,6 +10,26 @@ step returned. The engine's step hands back the sense messages made at the end o
 (sim.engine), which is what makes an action sent in reply to message k show first in message k+2, as on
 the real server; the server itself adds no delay.
 
+Sync-mode pacing is the real server's. Measured on rcssserver3d 0.7.3 (sync mode, not real time, one agent on
+loopback, `(scene rsg/agent/nao/nao_hetero.rsg 0)` sent on connecting, then `(init ...)` in answer to the first
+message), with its source (oxygen's AgentControl::StartCycle and NetControl::ReadTCPMessages): each cycle first
+reads the agent sockets, blocking up to 1 s until any agent has sent any bytes (BlockOnReadMessages), drains
+what is waiting, and repeats that read until every agent is synced (its `(syn)` read in this cycle, or still in
+its first 4 perceptor cycles, counted from the connection); only then does it send the percepts made at the end
+of the last cycle and step. So a client that waits for its first message gets it 2.06 s after its scene (the
+scene is read at once; then two reads time out after 1 s each: the robot is built in the first cycle, its
+first percepts made at the end of the second); from then on each message comes 0.3-1 ms after the client's
+answer, one message per answer, through the grace cycles and after, whether the answer holds `(syn)` or only
+`(init ...)`; answers sent 0.3 s late bring messages 0.3 s apart; a client that never answers gets 2 messages
+1 s apart, then none; a scene sent 2.5 s after connecting gets none (the grace cycles passed while it was
+silent). A client that reads all waiting messages and answers once therefore always finds one message.
+
+Here, in sync mode with agents connected, a cycle steps when every agent counts as synced and either some
+agent sent bytes since the last step or ``sync_read_wait_s`` (1 s) passed without any. The grace is counted in
+sense messages sent instead (a client whose scene comes late still joins). Before this, the grace cycles ran
+back to back: 4 messages within 20 ms of the scene, which such a client read as one batch; its `(init ...)`
+without `(syn)` then left both sides waiting (tests/sim/test_tcp_join.py: 3 of 3 joins deadlocked).
+
 Bad input never stops the server: a client whose length prefix exceeds ``max_frame_bytes`` (a "negative"
 prefix is a huge unsigned one), whose output backlog grows past ``max_backlog_bytes`` or whose socket
 fails is logged with its id and dropped; everything inside a frame is the engine's to judge.
@@ -39,6 +59,8 @@ CYCLE_S = 0.02
 # REFERENCE §3.9: a new agent counts as synced during its first 4 perceptor cycles. Counted here in sense
 # messages sent, so a client that never sends (scene ...) (and so gets no sense) never stalls the server.
 SYNC_GRACE_CYCLES = 4
+# The real server's read blocks this long for agent data each cycle in sync mode (NetControl::BlockOnReadMessages).
+SYNC_READ_WAIT_S = 1.0
 # REFERENCE §5.1: monitor updates every 0.04 s = every 2nd cycle.
 MONITOR_STEP_CYCLES = 2
 # Agents send < 1 kB per cycle; a 64 kB cap still leaves room for the biggest legitimate message and
@@ -129,6 +151,9 @@ class SimServer:
         on_cycle: called after every step with the cycle number (e.g. a monitor log writer).
         sync_timeout_s: in sync mode, stop waiting for an agent after this long (logged, counted);
             None = wait forever, like the real server.
+        sync_read_wait_s: in sync mode, with every agent counted as synced (the grace cycles), a cycle waits
+            this long for bytes from any agent before it steps anyway [s]; the real server's 1 s (module
+            docstring). Capped by ``sync_timeout_s``.
         max_agent_frame_bytes / max_monitor_frame_bytes: largest accepted payload per frame.
         max_backlog_bytes: unsent output per client before it is dropped.
     """
@@ -137,6 +162,7 @@ class SimServer:
                  monitor_port: int | None = None, sync: bool = True, real_time: bool = False,
                  monitor: MonitorFeed | None = None, trainer: Callable[[bytes], None] | None = None,
                  on_cycle: Callable[[int], None] | None = None, sync_timeout_s: float | None = None,
+                 sync_read_wait_s: float = SYNC_READ_WAIT_S,
                  max_agent_frame_bytes: int = DEFAULT_MAX_AGENT_FRAME_BYTES,
                  max_monitor_frame_bytes: int = DEFAULT_MAX_MONITOR_FRAME_BYTES,
                  max_backlog_bytes: int = DEFAULT_MAX_BACKLOG_BYTES) -> None:
@@ -150,6 +176,8 @@ class SimServer:
         self.trainer = trainer
         self.on_cycle = on_cycle
         self.sync_timeout_s = sync_timeout_s
+        self.sync_read_wait_s = (sync_read_wait_s if sync_timeout_s is None
+                                 else min(sync_read_wait_s, sync_timeout_s))
         self.max_agent_frame_bytes = max_agent_frame_bytes
         self.max_monitor_frame_bytes = max_monitor_frame_bytes
         self.max_backlog_bytes = max_backlog_bytes
@@ -162,6 +190,8 @@ class SimServer:
         self._agents: dict[socket.socket, _Agent] = {}
         self._monitors: dict[socket.socket, _Monitor] = {}
         self._pending: dict[int, bytes] = {}
+        self._agent_data = False              # bytes (or a close) from an agent since the last step
+        self._last_step_s = time.monotonic()  # when the last cycle ended [s, monotonic]
         self._stop = threading.Event()
         self._wake_r, self._wake_w = socket.socketpair()
         self._wake_r.setblocking(False)
@@ -262,7 +292,8 @@ class SimServer:
             return True
         waiting = [agent for agent in self._agents.values() if not self._counts_as_synced(agent)]
         if not waiting:
-            return True
+            # The real server's read: a cycle starts on the agents' data, or after the read wait without any.
+            return self._agent_data or not self._agents or now - self._last_step_s >= self.sync_read_wait_s
         if self.sync_timeout_s is None:
             return False
         expired = True
@@ -283,6 +314,9 @@ class SimServer:
             timeouts.append(max(0.0, next_step - now))
         if self.sync and self.sync_timeout_s is not None and self._agents:
             timeouts.append(self.sync_timeout_s / 4.0)
+        if (self.sync and self._agents and not self._agent_data
+                and all(self._counts_as_synced(agent) for agent in self._agents.values())):
+            timeouts.append(max(0.0, self._last_step_s + self.sync_read_wait_s - now))
         if not self.sync and not self.real_time:
             timeouts.append(0.0)
         return min(timeouts) if timeouts else None
@@ -296,6 +330,7 @@ class SimServer:
         for agent in self._agents.values():
             agent.synced = False
             agent.waited_since = None
+        self._agent_data = False
         try:
             self._pending = self.engine.step()
         except Exception:  # the loop must survive an engine bug; it is logged with its traceback
@@ -303,6 +338,7 @@ class SimServer:
             logger.exception("engine step failed; cycle skipped")
             self._pending = {}
         self._send_percepts()
+        self._last_step_s = time.monotonic()
         self.stats.cycles += 1
         if self.on_cycle is not None:
             try:
@@ -413,6 +449,8 @@ class SimServer:
         except OSError as error:
             self._drop(client, f"receive failed: {error}")
             return
+        if isinstance(client, _Agent):
+            self._agent_data = True
         if not data:
             if client.decoder.pending_bytes:
                 self._drop(client, f"closed the connection inside a frame ({client.decoder.pending_bytes} bytes "
@@ -494,6 +532,7 @@ class SimServer:
         client.closed = True
         if isinstance(client, _Agent):
             logger.log(level, "agent %d (%s) dropped: %s", client.agent_id, client.peer, reason)
+            self._agent_data = True   # a closed socket ends the real server's read too
             self._agents.pop(client.sock, None)
             self._pending.pop(client.agent_id, None)
             try:

@@ -83,6 +83,7 @@ def server_factory():
 
     def make(**kwargs) -> SimServer:
         engine = kwargs.pop("engine", None) or StubEngine()
+        kwargs.setdefault("sync_read_wait_s", 0.2)  # the real 1 s would only slow the joins down
         server = SimServer(engine, agent_port=0, **kwargs).start()
         servers.append(server)
         return server
@@ -171,6 +172,8 @@ def test_real_time_mode_never_waits(server_factory) -> None:
 def test_sync_with_real_time_is_capped_at_50_hz(server_factory) -> None:
     server = server_factory(sync=True, real_time=True)
     client = Client(server.agent_port)
+    client.recv()  # a new agent's first message comes after the read waits (sim.tcp_server docstring)
+    client.send(b"(syn)")
     start = time.monotonic()
     count = 0
     while time.monotonic() - start < 0.5:
