@@ -54,6 +54,7 @@ sessions), benchmarks/bench_sim.py.
 
 from __future__ import annotations
 
+import os
 import tomllib
 from dataclasses import dataclass, fields, replace
 from pathlib import Path
@@ -119,6 +120,19 @@ class PhysicsParams:
 #: The calibrated values (``motion-studio calibrate --write``), with their provenance; they override the
 #: dataclass defaults above.
 CALIBRATED_FILE = Path(__file__).with_name("physics_calibrated.toml")
+#: Environment variable naming another physics file to use instead (a candidate calibration, for a trial).
+PHYSICS_FILE_ENV = "NAO3D_PHYSICS_FILE"
+
+
+def physics_file() -> Path | None:
+    """The physics file in force: ``$NAO3D_PHYSICS_FILE`` if set, else `CALIBRATED_FILE` if present."""
+    chosen = os.environ.get(PHYSICS_FILE_ENV)
+    if chosen:
+        path = Path(chosen)
+        if not path.is_file():
+            raise ValueError(f"{PHYSICS_FILE_ENV}={chosen}: no such physics file")
+        return path
+    return CALIBRATED_FILE if CALIBRATED_FILE.is_file() else None
 
 
 def load_physics_file(path: Path) -> dict[str, object]:
@@ -148,8 +162,9 @@ def default_physics_params(**overrides: object) -> PhysicsParams:
         TypeError: an override names no field (the message lists the fields).
     """
     base = PhysicsParams()
-    if CALIBRATED_FILE.is_file():
-        base = replace(base, **load_physics_file(CALIBRATED_FILE))  # type: ignore[arg-type]
+    chosen = physics_file()
+    if chosen is not None:
+        base = replace(base, **load_physics_file(chosen))  # type: ignore[arg-type]
     unknown = set(overrides) - set(PhysicsParams.__dataclass_fields__)
     if unknown:
         raise TypeError(f"unknown physics parameter(s) {sorted(unknown)}; known: "

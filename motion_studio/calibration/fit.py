@@ -58,6 +58,7 @@ DEFAULT_PARAMETERS: tuple[FitParameter, ...] = (
     FitParameter("contact_solimp[2]", 0.0002, 0.02, log=True),
     FitParameter("contact_solref[0]", 0.02, 0.2, log=True),
     FitParameter("contact_solref[1]", 0.3, 3.0, log=True),
+    FitParameter("noslip_iterations", 0, 20),
 )
 
 

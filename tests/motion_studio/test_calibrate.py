@@ -94,3 +94,18 @@ def test_cli_error_is_one_line(tmp_path: Path) -> None:
                             capture_output=True, text=True, timeout=120)
     assert result.returncode == 2
     assert result.stderr.strip().count("\n") == 0 and "no real_*.jsonl" in result.stderr
+
+
+def test_a_physics_file_named_by_the_environment_is_used(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    path = tmp_path / "candidate.toml"
+    path.write_text("[physics]\nfriction = 7.5\ncontact_solref = [0.03, 1.2]\n")
+    monkeypatch.setenv("NAO3D_PHYSICS_FILE", str(path))
+    params = default_physics_params(substeps=1)
+    assert params.friction == 7.5 and params.contact_solref == (0.03, 1.2)
+    monkeypatch.setenv("NAO3D_PHYSICS_FILE", str(tmp_path / "missing.toml"))
+    with pytest.raises(ValueError, match="no such physics file"):
+        default_physics_params()
+    path.write_text("[physics]\nfrictoin = 1\n")
+    monkeypatch.setenv("NAO3D_PHYSICS_FILE", str(path))
+    with pytest.raises(ValueError, match="unknown physics parameter 'frictoin'"):
+        default_physics_params()
