@@ -25,6 +25,7 @@ COMMAND_MODULES = (
     "motion_studio.commands.bench_skills",
     "motion_studio.commands.play",
     "motion_studio.commands.tune",
+    "motion_studio.commands.transfer",
     "motion_studio.commands.calibrate",
 )
 

@@ -1,0 +1,236 @@
+"""The skill cases measured on both servers: where the robot stands, what it plays, the trainer commands that
+put it (and the ball) there, and the scripted falls before a stand-up.
+
+Timeline of every case on both servers: CONNECT_CYCLES (scene, init, the agent's own beam), the trainer
+commands (move with no beam noise, ball, PlayOn), ``settle_cycles`` standing still (the drop from z = 0.4
+settles), then the skill for the case's cycles. A case with ``fall`` first plays FALL_SCRIPT (raw joint
+velocities) for FALL_SCRIPT_CYCLES cycles, then the skill.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, replace
+from pathlib import Path
+
+from agent.motion import MotionController, MotionLibrary, MotionRequest, default_library, load_dynamic_params
+from agent.protocol.effectors import Action, JointVelocity
+from agent.skills.base import PlayMotion, Skill
+from agent.skills.behavior import SkillBehavior
+from agent.skills.standup import StandUp
+from agent.skills.turn import TurnBy
+from agent.world_model import WorldModel
+from motion_studio.realserver.git_export import export_motions, short_revision
+
+CYCLE_S = 0.02
+#: Cycles before the move (scene, init, the agent's own beam), as motion_studio.scenarios.CONNECT_CYCLES.
+CONNECT_CYCLES = 6
+#: Cycles standing still after the move before the skill starts (the drop from z = 0.4 settles).
+SETTLE_CYCLES = 40
+TEAM, UNUM = "Check", 1
+
+
+# ---- cases ---------------------------------------------------------------------------------------------
+class SkillSequence(Skill):
+    """Skills one after the other; each for a number of cycles (None: until done)."""
+
+    def __init__(self, *parts: tuple[Skill | None, int | None]) -> None:
+        super().__init__()
+        self.parts = parts
+        self.name = " then ".join(p.name if p else "idle" for p, _ in parts)
+        self.reset()
+
+    def reset(self) -> None:
+        super().reset()
+        self._index, self._cycles = 0, 0
+        for skill, _ in self.parts:
+            if skill is not None:
+                skill.reset()
+
+    def step(self, world: WorldModel, motion: MotionController) -> MotionRequest:
+        while self._index < len(self.parts):
+            skill, cycles = self.parts[self._index]
+            finished = (cycles is not None and self._cycles >= cycles) or (
+                cycles is None and skill is not None and skill.done)
+            if not finished:
+                self._cycles += 1
+                return skill.step(world, motion) if skill is not None else MotionRequest(None)
+            self._index, self._cycles = self._index + 1, 0
+        self.done = True
+        return MotionRequest(None)
+
+
+@dataclass(frozen=True)
+class Case:
+    """One measured run: a skill from a standstill at a spot, for a number of cycles."""
+
+    name: str
+    make_skill: Callable[[], Skill | None]
+    cycles: int
+    position_m: tuple[float, float] = (-8.0, 0.0)
+    heading_deg: float = 0.0
+    ball_m: tuple[float, float] | None = (0.0, 8.0)
+    """Where the ball lies (out of the way unless the case kicks it)."""
+    fall: str | None = None
+    """"back"/"front": the skill starts with a scripted fall (raw joint velocities, FALL_SCRIPT)."""
+    recover_falls: bool = False
+    walk_cycles: int | None = None
+    """For a walk: the cycles it is requested (the rest is its stop)."""
+    motion: str | None = None
+    """The motion the case needs (cases whose motion the library lacks are skipped)."""
+    kick: bool = False
+    """The ball goes where the motion's constants ``ball_forward_m``/``ball_left_m`` want it (robot frame, walk
+    stance; the stand before the kick moves the torso STAND_SHIFT_M forward)."""
+    settle_cycles: int = SETTLE_CYCLES
+    """Cycles standing still between the move and the skill."""
+    start: int = 0
+    """Which lying start of a stand-up case (0: the case as shipped; see :func:`vary_fall`)."""
+    fall_speed_scale: float = 1.0
+    """Factor on every joint velocity of the fall script."""
+    fall_stop_shift_cycles: int = 0
+    """Cycles added to the fall script's stop step (its last step)."""
+
+    @property
+    def skill_cycle(self) -> int:
+        """The first cycle of the skill phase (sense message index)."""
+        return CONNECT_CYCLES + self.settle_cycles
+
+
+def _walk(name: str, seconds: float = 10.0, stop_s: float = 2.0) -> Case:
+    walk = int(seconds / CYCLE_S)
+    return Case(name, lambda: SkillSequence((PlayMotion(name, repeat=True), walk), (None, None)),
+                walk + int(stop_s / CYCLE_S), walk_cycles=walk)
+
+
+CASES: dict[str, Case] = {
+    "stand": Case("stand", lambda: PlayMotion("stand"), 200),
+    "turn_left": Case("turn_left", lambda: PlayMotion("turn_left", repeat=True), 400),
+    "turn_right": Case("turn_right", lambda: PlayMotion("turn_right", repeat=True), 400),
+    "turn_by_90": Case("turn_by_90", lambda: TurnBy(90.0), 400),
+    "walk_forward": _walk("walk_forward"),
+    "walk_backward": replace(_walk("walk_backward"), position_m=(-3.0, 0.0)),
+    "walk_left": replace(_walk("walk_left"), position_m=(-5.0, -4.0)),
+    "walk_right": replace(_walk("walk_right"), position_m=(-5.0, 4.0)),
+    "standup_back": Case("standup_back", StandUp, 500, fall="back"),
+    "standup_front": Case("standup_front", StandUp, 500, fall="front"),
+}
+#: Torso moved forward by the stand motion from the zero pose [m] (measured: real 0.032, ours 0.033).
+STAND_SHIFT_M = 0.032
+STAND_CYCLES = 60
+
+
+def _kick(name: str) -> Case:
+    return Case(name, lambda: SkillSequence((PlayMotion("stand"), STAND_CYCLES), (PlayMotion(name), None),
+                                            (None, None)), STAND_CYCLES + 300, motion=name, kick=True)
+
+
+for _name in ("kick", "kick_left", "kick_strong", "kick_strong_left"):
+    CASES[_name] = _kick(_name)
+for _case in list(CASES.values()):
+    if _case.motion is None and _case.name in ("stand", "turn_left", "turn_right", "walk_forward", "walk_backward",
+                                               "walk_left", "walk_right"):
+        CASES[_case.name] = replace(_case, motion=_case.name)
+CASES["standup_back"] = replace(CASES["standup_back"], motion="standup_back")
+CASES["standup_front"] = replace(CASES["standup_front"], motion="standup_front")
+
+#: Raw joint velocities [rad/s] by cycle of the skill phase that knock the robot over: both hips at 3 rad/s tip it
+#: onto its back (as tests/sim/fixtures/real_0.7.3_fall); hips at -1.5 and ankles at -3 rad/s onto its front.
+FALL_SCRIPT = {
+    "back": {0: {"lle3": 3.0, "rle3": 3.0}, 40: {"lle3": 0.0, "rle3": 0.0}},
+    "front": {0: {"lle3": -1.5, "rle3": -1.5, "lle5": -3.0, "rle5": -3.0},
+              30: {"lle3": 0.0, "rle3": 0.0, "lle5": 0.0, "rle5": 0.0}},
+}
+FALL_SCRIPT_CYCLES = 100
+
+
+def fall_steps(case: Case) -> dict[int, dict[str, float]]:
+    """The case's fall script: FALL_SCRIPT[case.fall] with its velocities scaled and its stop step shifted
+    (identical to FALL_SCRIPT for a shipped case)."""
+    if case.fall is None:
+        return {}
+    script = FALL_SCRIPT[case.fall]
+    stop = max(script)
+    steps: dict[int, dict[str, float]] = {}
+    for cycle, velocities in script.items():
+        at = cycle + case.fall_stop_shift_cycles if cycle == stop else cycle
+        steps[at] = {name: value * case.fall_speed_scale for name, value in velocities.items()}
+    return steps
+
+
+class FallThenSkill:
+    """A ``Behavior``: from ``start_cycle`` on, FALL_SCRIPT_CYCLES cycles of the scripted fall, then ``inner``."""
+
+    def __init__(self, inner: SkillBehavior, case: Case) -> None:
+        self.inner = inner
+        self.side = case.fall
+        self.steps = fall_steps(case)
+        self.cycle = -1
+        self.start_cycle: int | None = None
+
+    def __call__(self, world: WorldModel) -> list[Action]:
+        self.cycle += 1
+        if self.side is None or self.start_cycle is None or self.cycle - self.start_cycle >= FALL_SCRIPT_CYCLES:
+            return self.inner(world)
+        step = self.steps.get(self.cycle - self.start_cycle, {})
+        return [JointVelocity(name, value) for name, value in step.items()]
+
+
+# ---- motions -------------------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class MotionSource:
+    """Where the played motions come from: ``folder`` None = the working tree; else a folder with ``files/`` and
+    ``params/dynamic_elements.toml`` exported from git ``revision``."""
+
+    folder: Path | None = None
+    revision: str = "worktree"
+
+    def library(self) -> MotionLibrary:
+        return default_library(0, self.folder / "files" if self.folder is not None else None)
+
+    def controller(self) -> MotionController | None:
+        """A motion controller on these motions (None: SkillBehavior's default, the working tree's)."""
+        if self.folder is None:
+            return None
+        return MotionController(default_library(0, self.folder / "files"),
+                                load_dynamic_params(self.folder / "params" / "dynamic_elements.toml"), 0)
+
+
+def motion_source(revision: str, scratch: Path) -> MotionSource:
+    """The motions of git ``revision`` exported under ``scratch`` ('worktree': the files as they are now).
+
+    Raises:
+        subprocess.CalledProcessError: an unknown revision.
+    """
+    if revision == "worktree":
+        return MotionSource()
+    short = short_revision(revision)
+    return MotionSource(export_motions(short, scratch), short)
+
+
+def behavior(case: Case, motions: MotionSource) -> tuple[SkillBehavior, FallThenSkill]:
+    """The agent's behaviour for a case: the skill behaviour (skill set at the skill cycle) behind the fall."""
+    inner = SkillBehavior(motions.controller(), None, 0, case.recover_falls)
+    return inner, FallThenSkill(inner, case)
+
+
+# ---- trainer commands ----------------------------------------------------------------------------------
+def kick_ball_m(case: Case, motions: MotionSource) -> tuple[float, float]:
+    """Field position of the ball for a kick case, from the motion's constants (robot frame)."""
+    constants = motions.library().get(case.motion).constants
+    forward = float(constants["ball_forward_m"]) + STAND_SHIFT_M
+    left = float(constants["ball_left_m"])
+    c, s = math.cos(math.radians(case.heading_deg)), math.sin(math.radians(case.heading_deg))
+    return case.position_m[0] + c * forward - s * left, case.position_m[1] + s * forward + c * left
+
+
+def trainer_commands(case: Case, motions: MotionSource) -> list[str]:
+    """What the monitor sends at the move cycle (both servers): the move (trainer ``move`` angle = heading -
+    90 deg for the left team, as beam adds -90), the ball, PlayOn."""
+    x, y = case.position_m
+    commands = [f"(agent (unum {UNUM})(team Left)(move {x} {y} 0.4 {case.heading_deg - 90.0}))"]
+    ball = kick_ball_m(case, motions) if case.kick else case.ball_m
+    if ball is not None:
+        commands.append(f"(ball (pos {ball[0]:.4f} {ball[1]:.4f} 0.042)(vel 0 0 0))")
+    commands.append("(playMode PlayOn)")
+    return commands
