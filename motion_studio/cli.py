@@ -26,6 +26,7 @@ COMMAND_MODULES = (
     "motion_studio.commands.play",
     "motion_studio.commands.tune",
     "motion_studio.commands.transfer",
+    "motion_studio.commands.real",
     "motion_studio.commands.calibrate",
 )
 

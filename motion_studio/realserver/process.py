@@ -68,12 +68,12 @@ class RealServer:
         self.log.close()
 
 
-def connect(port: int, timeout_s: float = 20.0) -> socket.socket:
-    """A TCP connection to 127.0.0.1:``port``, retried until ``timeout_s`` (the server takes a moment)."""
+def connect(port: int, timeout_s: float = 20.0, host: str = "127.0.0.1") -> socket.socket:
+    """A TCP connection to ``host``:``port``, retried until ``timeout_s`` (the server takes a moment)."""
     deadline = time.monotonic() + timeout_s
     while True:
         try:
-            sock = socket.create_connection(("127.0.0.1", port), timeout=10)
+            sock = socket.create_connection((host, port), timeout=10)
             sock.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
             return sock
         except OSError:
