@@ -1,8 +1,9 @@
 """Our simulator against the real rcssserver3d 0.7.3 on the same scripted sessions (tests/sim/fixtures).
 
-The traces were recorded from the real server (tools/record_real_trace.py): stand, crouch (hip/knee/ankle
-at 2/-4/2 rad/s for 15 cycles, head at 1 rad/s) and fall (both hips forward at 3 rad/s). Replaying the same
-commands here must give the same joint angles, timing and, within the stated tolerances, the same forces.
+The traces were recorded from the real server (``motion-studio real trace``, then tools/record_real_trace.py):
+stand, crouch (hip/knee/ankle at 2/-4/2 rad/s for 15 cycles, head at 1 rad/s) and fall (both hips forward at
+3 rad/s). Replaying the same commands here must give the same joint angles, timing and, within the stated
+tolerances, the same forces.
 """
 
 from __future__ import annotations
