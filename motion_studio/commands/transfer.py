@@ -5,6 +5,7 @@ and JSON in --out."""
 from __future__ import annotations
 
 import json
+import logging
 import subprocess
 import sys
 import tempfile
@@ -73,6 +74,7 @@ def transfer(
         _fail(f"no fixture folder {fixtures}")
     cases = transfer_room.plan(starts, seed, case)
     out.mkdir(parents=True, exist_ok=True)
+    logging.getLogger("sim").setLevel(logging.WARNING)  # each run's play-mode changes would bury the progress
 
     def progress(done: int, total: int, name: str) -> None:
         typer.echo(f"  [{done + 1}/{total}] {name}", err=True)

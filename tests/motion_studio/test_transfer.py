@@ -1,0 +1,163 @@
+"""``motion-studio transfer`` without the real server (it never runs in tests): the recorded real runs of
+tests/sim/fixtures replayed on our MuJoCo world, the ours/real rows and table, the stood-up rule, a corrupt
+fixture named by file and line, the command's help and one-line errors."""
+
+from __future__ import annotations
+
+import gzip
+import json
+import math
+import shutil
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+from motion_studio.cli import _register_commands, app
+from motion_studio.realserver import transfer, transfer_report
+from motion_studio.realserver.cases import FALL_SCRIPT_CYCLES
+from motion_studio.realserver.errors import FixtureError
+from motion_studio.realserver.fixtures import fixture_path, read_fixture
+from motion_studio.realserver.measures import stood_index
+from motion_studio.realserver.skill_runs import Run
+from motion_studio.scenarios import Truth
+
+FIXTURES = Path(__file__).parents[1] / "sim" / "fixtures"
+
+
+def _invoke(*args: str, env: dict[str, str] | None = None):
+    _register_commands()
+    return CliRunner().invoke(app, ["transfer", *args], env=env)
+
+
+def _replayed(tmp_path: Path, *names: str) -> transfer.Transfer:
+    cases = transfer.plan(1, 0, list(names))
+    return transfer.measure("replay", cases, motions_revision="HEAD", fixtures=FIXTURES, scratch=tmp_path)
+
+
+# ---- rows and ratios on recorded fixtures -----------------------------------------------------------------------
+def test_turn_rows_compare_the_recorded_real_turn_with_ours_replaying_it(tmp_path: Path) -> None:
+    result = _replayed(tmp_path, "turn_left", "walk_backward", "stand")
+    assert result.errors == []
+    rows = {row.figure: row for row in transfer_report.rows(result.pairs, result.figures, starts=1)}
+    turn = rows["turn_left: turn per motion [deg]"]
+    # the recorded real run: 16 turn motions (our agent fed the recorded messages again gives them all), 607 deg
+    assert result.figures["turn_left"]["real"]["turn motions"] == 16
+    assert turn.real == pytest.approx(37.9, abs=0.5)
+    assert turn.ratio == pytest.approx(turn.ours / turn.real)
+    assert 0.9 < turn.ratio < 1.15  # measured 1.04 (ours turns 39.5 deg a motion open loop)
+    walk = rows["walk backward: speed over 10 s [m/s]"]
+    assert walk.real == pytest.approx(0.276, abs=0.005)  # 2.76 m backwards in 10 s on the real server
+    assert 0.9 < walk.ratio < 1.15
+    assert rows["stand: torso height [m]"].ratio == pytest.approx(1.0, abs=0.01)
+    assert math.isnan(rows["kick: distance, ball on its spot [m]"].ratio)  # not in this run
+    table = transfer_report.table(list(rows.values()), "title")
+    line = next(text for text in table.splitlines() if text.startswith("turn_left: turn per motion"))
+    assert f"{turn.ratio:.2f}" in line and f"{turn.real:.1f}" in line
+
+
+def test_counts_compare_as_fractions() -> None:
+    row = transfer_report.Row("stood", 8, 9, real_of=10, ours_of=10)
+    assert row.ratio == pytest.approx(9 / 8)
+    assert "8/10" in transfer_report.table([row], "t")
+
+
+# ---- the stood-up rule -----------------------------------------------------------------------------------------
+def _truths(heights_m: list[float], up_z: list[float]) -> list[Truth | None]:
+    return [Truth(i * 0.02, (0.0, 0.0, z), u, 0.0, (0.0, 8.0, 0.04), False)
+            for i, (z, u) in enumerate(zip(heights_m, up_z))]
+
+
+def test_an_upright_torso_below_030_m_has_not_stood() -> None:
+    # fallen flat for the fall script, then sitting upright (up axis z = 1) at 0.28 m for 5 s
+    lying = FALL_SCRIPT_CYCLES + 20
+    run = Run("real", _truths([0.1] * lying + [0.28] * 250, [0.0] * lying + [1.0] * 250))
+    assert stood_index(run.truths) is None
+    assert transfer.standup_outcome(run).outcome == "lying"
+
+
+def test_stood_needs_a_full_second_above_030_m() -> None:
+    lying = FALL_SCRIPT_CYCLES + 20
+    short = _truths([0.1] * lying + [0.33] * 49 + [0.2] * 50, [0.0] * lying + [1.0] * 99)
+    assert transfer.standup_outcome(Run("ours", short)).outcome == "lying"
+    stood = _truths([0.1] * lying + [0.33] * 50, [0.0] * lying + [1.0] * 50)
+    outcome = transfer.standup_outcome(Run("ours", stood))
+    assert outcome.outcome == "stood"
+    assert outcome.time_s == pytest.approx(20 * 0.02)  # from the end of the fall script
+    assert transfer.standup_outcome(Run("ours", _truths([0.38] * 300, [1.0] * 300))).outcome == "no fall"
+
+
+def test_the_real_robot_sitting_up_from_its_front_has_not_stood() -> None:
+    # recorded: after the front fall the real torso tilts back to up-axis z 0.89 while its centre stays at 0.15 m
+    fixture = read_fixture(fixture_path(FIXTURES, "standup_front"))
+    truths = [fixture.truth.get(i) for i in range(fixture.skill_cycle + 1, len(fixture.received) + 1)]
+    assert max(t.up_z for t in truths[FALL_SCRIPT_CYCLES:] if t is not None) > 0.85
+    assert transfer.standup_outcome(Run("real", truths)).outcome == "lying"
+
+
+# ---- fixtures that cannot be used ----------------------------------------------------------------------------
+def _corrupt_copy(folder: Path, name: str, line: int) -> Path:
+    rows = gzip.open(fixture_path(FIXTURES, name), "rt").read().splitlines()
+    rows[line - 1] = rows[line - 1][: len(rows[line - 1]) // 2]  # cut mid-object
+    path = fixture_path(folder, name)
+    with gzip.open(path, "wt") as handle:
+        handle.write("\n".join(rows) + "\n")
+    return path
+
+
+def test_a_corrupt_fixture_is_named_with_its_line(tmp_path: Path) -> None:
+    path = _corrupt_copy(tmp_path, "stand", 5)
+    with pytest.raises(FixtureError) as caught:
+        read_fixture(path)
+    assert caught.value.path == path and caught.value.line == 5
+    assert str(caught.value).startswith(f"{path}:5: not JSON")
+    (tmp_path / "plain.jsonl.gz").write_text("not gzip\n")
+    with pytest.raises(FixtureError, match=r"plain.jsonl.gz:1: unreadable"):
+        read_fixture(tmp_path / "plain.jsonl.gz")
+    with pytest.raises(FixtureError, match="no such fixture file"):
+        read_fixture(tmp_path / "missing.jsonl.gz")
+
+
+def test_transfer_names_the_corrupt_fixture_and_goes_on(tmp_path: Path) -> None:
+    fixtures = tmp_path / "fixtures"
+    fixtures.mkdir()
+    shutil.copy(fixture_path(FIXTURES, "turn_right"), fixtures)
+    bad = _corrupt_copy(fixtures, "stand", 3)
+    out = tmp_path / "out"
+    # SS_PREFIX with no server: the command replays the fixtures and says how to build the real server
+    result = _invoke("--fixtures", str(fixtures), "--out", str(out), "--case", "stand", "--case", "turn_right",
+                     "--case", "kick", env={"SS_PREFIX": str(tmp_path / "nothing")})
+    assert result.exit_code == 0, result.output
+    assert f"transfer: {bad}:3: not JSON" in result.output
+    assert f"{fixture_path(fixtures, 'kick')}: no such fixture file" in result.output
+    assert "turn_right: turn per motion [deg]" in result.output
+    assert "bash " in result.output and "real-server/build.sh <git dir of BerlinUnited/SimSpark-SPL>" in result.output
+    summary = json.loads((out / "transfer.json").read_text())
+    assert summary["mode"] == "replay"
+    assert list(summary["runs"]) == ["turn_right"]
+    assert len(summary["errors"]) == 2
+    row = next(r for r in summary["rows"] if r["figure"].startswith("turn_right"))
+    assert row["ratio"] == pytest.approx(row["ours"] / row["real"])
+    assert (out / "transfer_ratios.png").stat().st_size > 10_000
+
+
+# ---- the command -------------------------------------------------------------------------------------------------
+def test_help_lists_the_options_with_their_defaults() -> None:
+    result = _invoke("--help")
+    assert result.exit_code == 0
+    for option in ("--starts", "--seed", "--out", "--record", "--fixtures", "--case", "--motions", "--replay",
+                   "--real-server-dir"):
+        assert option in result.output
+    assert "10" in result.output and "out/transfer" in result.output
+
+
+@pytest.mark.parametrize("args, message", [
+    (["--starts", "0"], "--starts must be at least 1"),
+    (["--case", "fly", "--replay"], "unknown case fly; known: stand"),
+    (["--replay", "--record", "x"], "--record needs the real server"),
+])
+def test_bad_options_are_one_line_and_exit_2(args: list[str], message: str) -> None:
+    result = _invoke(*args)
+    assert result.exit_code == 2
+    assert message in result.output
+    assert len(result.output.strip().splitlines()) == 1
