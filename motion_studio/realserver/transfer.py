@@ -212,7 +212,8 @@ def turn_per_motion_deg(run: Run) -> float:
 
 
 def walk_20m(run: Run) -> tuple[float, int]:
-    """(seconds until the torso is 20 m from its start, NaN if never; falls before then, or in the run)."""
+    """(seconds until the torso is 20 m from its start, NaN if never; falls (count_falls) before then, or in
+    the whole run)."""
     first = known(run.truths, 0, backwards=False)
     reached = next((i for i, t in enumerate(run.truths) if first is not None and t is not None
                     and math.dist(t.torso_m[:2], first.torso_m[:2]) >= WALK_20M_DISTANCE_M), None)
@@ -246,10 +247,12 @@ def run_figures(pair: Pair) -> dict[str, dict[str, float | str]]:
         elif case.fall:
             outcome = standup_outcome(run)
             figures["outcome"], figures["time to stand [s]"] = outcome.outcome, outcome.time_s
-            figures["torso z max after the fall [m]"] = max(
-                (t.torso_m[2] for t in run.truths[fall or 0:] if t is not None), default=math.nan)
+            figures["torso z max after the fall script [m]"] = max(
+                (t.torso_m[2] for t in run.truths[FALL_SCRIPT_CYCLES:] if t is not None), default=math.nan)
         elif case.name == WALK_20M.name:
             figures["20 m after [s]"], figures["falls"] = walk_20m(run)
+            last = known(run.truths, case.walk_cycles - 1)
+            figures["heading change [deg]"] = wrap_deg(last.heading_deg - truths[0].heading_deg)
         elif case.name == "stand":
             figures["torso z mean [m]"] = statistics.fmean(t.torso_m[2] for t in truths)
         out[side] = figures

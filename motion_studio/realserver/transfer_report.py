@@ -96,6 +96,8 @@ def rows(pairs: list[Pair], figures: dict[str, dict], starts: int, absent: str =
                        walk["ours"].get("falls", math.nan)))
         out.append(Row("20 m forward walk: time to 20 m [s]", walk["real"].get("20 m after [s]", math.nan),
                        walk["ours"].get("20 m after [s]", math.nan)))
+        out.append(Row("20 m forward walk: heading change [deg]", walk["real"].get("heading change [deg]", math.nan),
+                       walk["ours"].get("heading change [deg]", math.nan)))
     else:
         out.append(Row("20 m forward walk: falls", math.nan, math.nan, absent))
     return out
