@@ -17,6 +17,7 @@ from typing import Annotated, Optional
 import typer
 
 from motion_studio.cli import app
+from motion_studio.realserver.match_play import MatchSetup
 
 real_app = typer.Typer(help="Measure against the real rcssserver3d 0.7.3 (needs it built; never in CI).",
                        no_args_is_help=True)
@@ -111,8 +112,6 @@ def match(
 ) -> None:
     """Our full soccer agent in a small match on the real server and on ours; figures side by side (falls,
     kicks and their effect, localization error, fouls, play modes)."""
-    from motion_studio.realserver.match_play import MatchSetup
-
     if not 1 <= players <= 11:
         _fail("match", f"--players must be 1-11, got {players}")
     if kick_off not in ("Left", "Right", "same"):
@@ -157,8 +156,9 @@ def _play_revision(code: str, players: int, duration: float, seed: int, kick_off
     raise typer.Exit(subprocess.run(argv, cwd=folder, env=env).returncode)
 
 
-def _play(setup, seed: int, label: str, kick_off: str, cli: bool, only: str | None, scripts: Path | None,  # noqa: ANN001
-          out: Path, json_path: Path | None) -> None:
+def _play(setup: MatchSetup, seed: int, label: str, kick_off: str, cli: bool, only: str | None,
+          scripts: Path | None, out: Path, json_path: Path | None) -> None:
+    """Both matches (or one, ``only``) with the code of this process; prints the table, writes the JSON."""
     import agent
     from motion_studio.realserver.match_figures import figures, problems, table
     from motion_studio.realserver.match_play import lineup, run_ours, run_real, run_real_cli

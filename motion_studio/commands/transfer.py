@@ -94,18 +94,14 @@ def transfer(
     wall_s = time.perf_counter() - started
     for error in result.errors:
         typer.echo(f"transfer: {error}", err=True)
-    rows = transfer_report.rows(result.pairs, result.figures, starts,
-                                                     "not run" if live else "no fixture")
+    rows = transfer_report.rows(result.pairs, result.figures, starts, "not run" if live else "no fixture")
     what = ("live: rcssserver3d 0.7.3 and ours side by side" if live else
             "replay: recorded real runs, their commands replayed open loop on ours")
     typer.echo(transfer_report.table(rows, f"transfer ({what}; code {code}; motions {result.motions})"))
     for note in result.notes:
         typer.echo(f"note: {note}")
     plots = transfer_report.plot(result.pairs, rows, out)
-    summary = {"mode": result.mode, "code": code, "motions": result.motions, "starts": starts, "seed": seed, "wall_s": round(wall_s, 1),
-               "rows": [row.as_dict() for row in rows], "runs": result.figures,
-               "run_notes": {transfer_room.run_name(p.case): p.notes for p in result.pairs if p.notes},
-               "errors": result.errors, "notes": result.notes, "plots": [str(p) for p in plots]}
+    summary = transfer_report.summary(result, rows, code=code, starts=starts, seed=seed, wall_s=wall_s, plots=plots)
     (out / "transfer.json").write_text(json.dumps(summary, indent=1) + "\n")
     typer.echo(f"{len(result.pairs)} runs in {wall_s:.0f} s; figures {out / 'transfer.json'}, plots in {out}")
     if not live:

@@ -16,7 +16,6 @@ import math
 import random
 import statistics
 import subprocess
-import tempfile
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field, replace
 from pathlib import Path
@@ -24,7 +23,7 @@ from pathlib import Path
 from agent.skills.base import PlayMotion
 from motion_studio.realserver.cases import (CASES, CYCLE_S, FALL_SCRIPT_CYCLES, SETTLE_CYCLES, Case, MotionSource,
                                             SkillSequence, motion_source)
-from motion_studio.realserver.errors import FixtureError
+from motion_studio.realserver.errors import FixtureError, RealServerError
 from motion_studio.realserver.fixtures import Fixture, fixture_path, read_fixture, write_fixture
 from motion_studio.realserver.measures import (ball_travel_m, count_falls, displacement_m, first_fall, known,
                                                stood_index, turned_deg, wrap_deg)
@@ -94,16 +93,23 @@ class Pair:
 
 # ---- live: both servers ----------------------------------------------------------------------------------
 def run_live(cases: list[Case], motions: MotionSource, scripts: Path, workdir: Path, record: Path | None = None,
-             progress: Callable[[int, int, str], None] | None = None) -> Iterator[Pair]:
+             progress: Callable[[int, int, str], None] | None = None,
+             errors: list[str] | None = None) -> Iterator[Pair]:
     """Each case on the real server (this process inside netns.sh's namespace) and on ours; with ``record``
-    the real runs are written there as fixtures."""
+    the real runs are written there as fixtures. A real run that fails (the server stalls or drops the
+    connection) is skipped, its error appended to ``errors``."""
     from motion_studio.realserver.skill_runs import run_real, run_sim
 
+    errors = errors if errors is not None else []
     workdir.mkdir(parents=True, exist_ok=True)
     for done, case in enumerate(cases):
         if progress is not None:
             progress(done, len(cases), run_name(case))
-        real, lines = run_real(case, motions, scripts, workdir, tool=TOOL)
+        try:
+            real, lines = run_real(case, motions, scripts, workdir, tool=TOOL)
+        except (RealServerError, OSError) as error:
+            errors.append(f"{run_name(case)}: real run failed ({error}); server log {workdir}")
+            continue
         if record is not None:
             write_fixture(lines, fixture_path(record, run_name(case)))
         yield Pair(case, real, run_sim(case, motions))
@@ -269,7 +275,7 @@ class Transfer:
     figures: dict[str, dict]
     """run name -> {"real": {...}, "ours": {...}} (run_figures)."""
     errors: list[str]
-    """Fixtures that could not be used (file:line: what)."""
+    """Fixtures that could not be used (file:line: what), real runs that failed."""
     notes: list[str]
     motions: str = "recorded"
     """The motions revision played live ("recorded": each fixture's own)."""
@@ -295,7 +301,7 @@ def measure(mode: str, cases: list[Case], *, motions_revision: str, fixtures: Pa
     if mode == "live":
         motions = motion_source(motions_revision, scratch / "motions")
         played = motions.revision
-        pairs = list(run_live(cases, motions, scripts, workdir, record, progress))
+        pairs = list(run_live(cases, motions, scripts, workdir, record, progress, errors))
     else:
         # a varied lying start is replayed only where it was recorded (the missing ones are one note below)
         cases = [case for case in cases if not case.start or fixture_path(fixtures, run_name(case)).exists()]

@@ -8,7 +8,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from motion_studio.realserver.cases import CYCLE_S
-from motion_studio.realserver.transfer import STANDUP_CASES, WALK_20M, WALK_DIRECTIONS, Pair, run_name
+from motion_studio.realserver.transfer import STANDUP_CASES, WALK_20M, WALK_DIRECTIONS, Pair, Transfer, run_name
 
 #: Row labels of the single-run cases, in table order: (case, figure key, label).
 SINGLE_ROWS = (
@@ -133,6 +133,15 @@ def table(rows_: list[Row], title: str) -> str:
         lines.append(f"{row.figure:<{width}}  {_cell(row.real, row.real_of, digits):>10}  "
                      f"{_cell(row.ours, row.ours_of, digits):>10}  {ratio:>9}  {row.note}".rstrip())
     return "\n".join(lines)
+
+
+def summary(result: Transfer, rows_: list[Row], *, code: str, starts: int, seed: int, wall_s: float,
+            plots: list[Path]) -> dict:
+    """Everything a transfer run measured, JSON-ready (transfer.json)."""
+    return {"mode": result.mode, "code": code, "motions": result.motions, "starts": starts, "seed": seed,
+            "wall_s": round(wall_s, 1), "rows": [row.as_dict() for row in rows_], "runs": result.figures,
+            "run_notes": {run_name(pair.case): pair.notes for pair in result.pairs if pair.notes},
+            "errors": result.errors, "notes": result.notes, "plots": [str(path) for path in plots]}
 
 
 # ---- plots ---------------------------------------------------------------------------------------------
