@@ -104,6 +104,9 @@ class PhysicsParams:
     """Friction cone: "elliptic" or "pyramidal"."""
     impratio: float = 1.0
     """MuJoCo's frictional-to-normal impedance ratio of elliptic cones (> 1: stiffer friction, less creep)."""
+    ball_friction: float = 2.0
+    """Coulomb friction of the ball's contacts (MuJoCo takes the larger of the two geoms' values, so this
+    governs ball-foot and ball-ground contacts; SimSpark: unbounded, force-dependent slip 0.3 m/s per N)."""
     ball_solref: tuple[float, float] = (0.02, 1.0)
     """solref of the ball's contacts (MuJoCo's default)."""
     ball_solimp: tuple[float, float, float, float, float] = (0.9, 0.95, 0.001, 0.5, 2.0)

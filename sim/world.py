@@ -164,7 +164,7 @@ class World:
         ball.add_freejoint(name="ball")
         ball.add_geom(name="ball", type=mujoco.mjtGeom.mjGEOM_SPHERE, size=[BALL_RADIUS_M, 0, 0],
                       mass=BALL_MASS_KG, contype=_BALL_BIT, conaffinity=_ALL_BITS, condim=p.contact_condim,
-                      friction=[p.friction, 0.005, 0.0001], rgba=[1.0, 0.5, 0.0, 1.0], solref=list(p.ball_solref),
+                      friction=[p.ball_friction, 0.005, 0.0001], rgba=[1.0, 0.5, 0.0, 1.0], solref=list(p.ball_solref),
                       solimp=list(p.ball_solimp), solmix=1e6)   # the ball's own parameters win every contact
         return spec
 

@@ -116,7 +116,14 @@ def _pose_measures(replay: Replay) -> list[Measure]:
     ball_real = math.dist(real[cycles[0]].ball_m[:2], real[cycles[-1]].ball_m[:2])
     ball_ours = math.dist(ours[cycles[0]].ball_m[:2], ours[cycles[-1]].ball_m[:2])
     if max(ball_real, ball_ours) > 0.05:
-        out.append(_measure("ball_travel_m", ball_real, ball_ours, 0.1 + 0.2 * ball_real, "m"))
+        scale = 0.1 + 0.2 * ball_real
+        out.append(_measure("ball_travel_m", ball_real, ball_ours, scale, "m"))
+        # where it stopped, not only how far: a kick that flies 30 degrees off is not the real kick
+        out.append(Measure("ball_end_apart_m", 0.0, math.dist(real[cycles[-1]].ball_m[:2], ours[cycles[-1]].ball_m[:2]),
+                           "m", min(math.dist(real[cycles[-1]].ball_m[:2], ours[cycles[-1]].ball_m[:2]) / scale,
+                                    ERROR_CAP)))
+        # how deep the resting ball sits decides where the foot meets it (real: 2 mm into the ground)
+        out.append(_measure("ball_rest_height_m", real[cycles[0]].ball_m[2], ours[cycles[0]].ball_m[2], 0.002, "m"))
     return out
 
 

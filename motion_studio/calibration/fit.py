@@ -49,8 +49,8 @@ class FitParameter:
         return round(self.low + unit * (self.high - self.low), 6)
 
 
-#: The contact parameters calibrate fits by default (names as `PhysicsParams` fields).
-DEFAULT_PARAMETERS: tuple[FitParameter, ...] = (
+#: The robot contact parameters (names as `PhysicsParams` fields).
+CONTACT_PARAMETERS: tuple[FitParameter, ...] = (
     FitParameter("friction", 0.5, 50.0, log=True),
     FitParameter("impratio", 0.1, 30.0, log=True),
     FitParameter("contact_solimp[0]", 0.05, 0.95),
@@ -60,6 +60,18 @@ DEFAULT_PARAMETERS: tuple[FitParameter, ...] = (
     FitParameter("contact_solref[1]", 0.3, 3.0, log=True),
     FitParameter("noslip_iterations", 0, 20),
 )
+#: The ball's contact parameters (its contacts with feet and ground take the ball's values).
+BALL_PARAMETERS: tuple[FitParameter, ...] = (
+    FitParameter("ball_friction", 0.5, 200.0, log=True),
+    FitParameter("ball_solref[0]", 0.005, 0.1, log=True),
+    FitParameter("ball_solref[1]", 0.3, 3.0, log=True),
+    FitParameter("ball_solimp[0]", 0.05, 0.95),
+    FitParameter("ball_solimp[1]", 0.05, 0.99),
+    FitParameter("ball_linear_drag_n_s_m", 0.005, 0.02, log=True),
+)
+PARAMETER_SETS: dict[str, tuple[FitParameter, ...]] = {
+    "contact": CONTACT_PARAMETERS, "ball": BALL_PARAMETERS, "all": CONTACT_PARAMETERS + BALL_PARAMETERS}
+DEFAULT_PARAMETERS = CONTACT_PARAMETERS
 
 
 def _split(name: str) -> tuple[str, int | None]:
@@ -90,10 +102,11 @@ def with_values(params: PhysicsParams, values: dict[str, float]) -> PhysicsParam
             current = list(changes.get(field, getattr(params, field)))  # type: ignore[arg-type]
             current[index] = value
             changes[field] = tuple(current)
-    if "contact_solimp" in changes:   # MuJoCo wants dmin <= dmax < 1
-        solimp = list(changes["contact_solimp"])  # type: ignore[arg-type]
-        solimp[1] = max(solimp[0], solimp[1])
-        changes["contact_solimp"] = tuple(solimp)
+    for name in ("contact_solimp", "ball_solimp"):   # MuJoCo wants dmin <= dmax < 1
+        if name in changes:
+            solimp = list(changes[name])  # type: ignore[arg-type]
+            solimp[1] = max(solimp[0], solimp[1])
+            changes[name] = tuple(solimp)
     return replace(params, **changes)
 
 
@@ -108,11 +121,18 @@ class Evaluation:
     blow_ups: int
 
 
-def evaluate(traces: list[Trace], params: PhysicsParams, values: dict[str, float] | None = None) -> Evaluation:
-    """Replay every trace with ``params`` and score the agreement."""
+def evaluate(traces: list[Trace], params: PhysicsParams, values: dict[str, float] | None = None,
+             ball_roll: bool = True) -> Evaluation:
+    """Replay every trace with ``params`` and score the agreement (with the real ball-roll figures unless
+    ``ball_roll`` is False)."""
     scores: dict[str, float] = {}
     details: dict[str, list[Measure]] = {}
     blow_ups = 0
+    if ball_roll:
+        from motion_studio.calibration.reference_figures import ball_roll_measures
+
+        details["ball_roll"] = ball_roll_measures(params)
+        scores["ball_roll"] = score(details["ball_roll"])
     for trace in traces:
         run = replay_trace(trace, params)
         found = measures(run)
@@ -127,7 +147,7 @@ def evaluate(traces: list[Trace], params: PhysicsParams, values: dict[str, float
 
 def fit(traces: list[Trace], base: PhysicsParams, parameters: tuple[FitParameter, ...], run_dir: Path,
         generations: int, popsize: int | None = None, sigma: float = 0.25, seed: int = 0,
-        on_evaluation: Callable[[int, Evaluation], None] | None = None) -> Evaluation:
+        on_evaluation: Callable[[int, Evaluation], None] | None = None, ball_roll: bool = True) -> Evaluation:
     """CMA-ES from ``base`` over ``parameters``; resumes from ``run_dir``'s checkpoint. Returns the best
     evaluation found (the starting point included)."""
     run_dir.mkdir(parents=True, exist_ok=True)
@@ -145,7 +165,7 @@ def fit(traces: list[Trace], base: PhysicsParams, parameters: tuple[FitParameter
         x0 = np.array([p.to_unit(read_value(base, p.name)) for p in parameters])
         optimiser = CMAES.create(x0, sigma, popsize, seed)
         start = {p.name: read_value(base, p.name) for p in parameters}
-        first = evaluate(traces, base, start)
+        first = evaluate(traces, base, start, ball_roll)
         _log(log, -1, first)
         if on_evaluation:
             on_evaluation(-1, first)
@@ -156,7 +176,7 @@ def fit(traces: list[Trace], base: PhysicsParams, parameters: tuple[FitParameter
         losses = []
         for unit in candidates:
             values = {p.name: p.from_unit(u) for p, u in zip(parameters, unit)}
-            result = evaluate(traces, with_values(base, values), values)
+            result = evaluate(traces, with_values(base, values), values, ball_roll)
             _log(log, optimiser.generation, result)
             if on_evaluation:
                 on_evaluation(optimiser.generation, result)
@@ -166,7 +186,7 @@ def fit(traces: list[Trace], base: PhysicsParams, parameters: tuple[FitParameter
                 best = {"values": values, "objective": result.objective}
         optimiser.tell(losses)
         checkpoint.write_text(json.dumps({"parameters": names, "cmaes": optimiser.state(), "best": best}))
-    return evaluate(traces, with_values(base, best["values"]), best["values"])
+    return evaluate(traces, with_values(base, best["values"]), best["values"], ball_roll)
 
 
 def _log(path: Path, generation: int, result: Evaluation) -> None:

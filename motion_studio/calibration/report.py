@@ -87,7 +87,7 @@ def _grouped(values: dict[str, float]) -> dict[str, object]:
         else:
             out[name] = value
     for field, value in list(out.items()):
-        if field == "contact_solimp":
+        if field in ("contact_solimp", "ball_solimp"):
             solimp = list(value)  # type: ignore[arg-type]
             solimp[1] = max(solimp[0], solimp[1])
             out[field] = tuple(solimp)

@@ -26,16 +26,22 @@ def calibrate(
     out: Annotated[Path, typer.Option(help="run folder: checkpoint, evaluations.jsonl, agreement.png")] =
         Path("out/calibrate"),
     write: Annotated[bool, typer.Option(help="write the fitted values into sim/physics_calibrated.toml")] = False,
+    parameters: Annotated[str, typer.Option(help="what to fit: contact (robot contacts), ball, or all")] = "contact",
+    only: Annotated[list[str] | None, typer.Option(help="use only traces whose name contains this (repeatable); "
+                                                        "'ball_roll' is the real ball-roll figure")] = None,
 ) -> None:
     """Replay every real trace on our simulator, print the agreement per trace, and with --generations fit the
     contact parameters (friction, impratio, solimp, solref) to them; a killed fit resumes from --out."""
     from motion_studio.calibration.errors import CalibrationError
-    from motion_studio.calibration.fit import DEFAULT_PARAMETERS, evaluate, fit
+    from motion_studio.calibration.fit import PARAMETER_SETS, evaluate, fit
     from motion_studio.calibration.report import agreement_table, plot_agreement, write_physics_file
     from motion_studio.calibration.traces import find_traces, load_trace
     from sim.physics_params import CALIBRATED_FILE, default_physics_params
 
-    paths = find_traces(traces)
+    if parameters not in PARAMETER_SETS:
+        typer.echo(f"error: --parameters {parameters!r}: choose from {', '.join(PARAMETER_SETS)}", err=True)
+        raise typer.Exit(2)
+    paths = [p for p in find_traces(traces) if not only or any(o in p.name for o in only)]
     if not paths:
         typer.echo(f"error: --traces {traces}: no real_*.jsonl[.gz] trace files there", err=True)
         raise typer.Exit(2)
@@ -49,7 +55,8 @@ def calibrate(
         raise typer.Exit(2)
     logging.getLogger("sim").setLevel(logging.ERROR)   # blow-ups are counted in the objective
     base = default_physics_params()
-    before = evaluate(loaded, base)
+    ball_roll = not only or "ball_roll" in only
+    before = evaluate(loaded, base, ball_roll=ball_roll)
     after = None
     if generations:
         from tqdm import tqdm
@@ -64,7 +71,8 @@ def calibrate(
                 bar.update(1)
 
         try:
-            after = fit(loaded, base, DEFAULT_PARAMETERS, out, generations, popsize, seed=seed, on_evaluation=progress)
+            after = fit(loaded, base, PARAMETER_SETS[parameters], out, generations, popsize, seed=seed,
+                        on_evaluation=progress, ball_roll=ball_roll)
         except CalibrationError as error:
             bar.close()
             typer.echo(f"error: {error}", err=True)

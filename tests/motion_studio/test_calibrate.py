@@ -109,3 +109,13 @@ def test_a_physics_file_named_by_the_environment_is_used(tmp_path: Path, monkeyp
     monkeypatch.setenv("NAO3D_PHYSICS_FILE", str(path))
     with pytest.raises(ValueError, match="unknown physics parameter 'frictoin'"):
         default_physics_params()
+
+
+def test_ball_roll_is_compared_with_the_real_figure() -> None:
+    from motion_studio.calibration.reference_figures import ball_roll_measures
+
+    faithful = ball_roll_measures(default_physics_params())
+    assert [m.name for m in faithful] == ["roll_at_2_m_s", "roll_at_4_m_s", "roll_at_6_m_s", "roll_at_8_m_s"]
+    assert all(abs(m.ours - 0.677) < 0.06 for m in faithful)      # measured 0.68-0.71 m per m/s
+    draggy = ball_roll_measures(default_physics_params(ball_linear_drag_n_s_m=0.05))
+    assert all(m.ours < 0.5 and m.error == 5.0 for m in draggy)   # five times the drag: rolls far shorter
