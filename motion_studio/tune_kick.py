@@ -333,6 +333,9 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("--direction-weight", type=float, default=Objective.direction_m_per_deg,
                         help="score lost per degree of direction error beyond 3 deg [m/deg]")
     parser.add_argument("--start", default=None, help="start from this section's parameters (default: section)")
+    parser.add_argument("--start-checkpoint", type=Path, default=None,
+                        help="start from the best parameters of another search's checkpoint (e.g. --backend real, "
+                             "then --backend both from its best)")
     parser.add_argument("--only", default=None,
                         help="comma-separated parameter names: tune only these (the others stay at the start's)")
     parser.add_argument("--checkpoint", type=Path, default=None)
@@ -349,6 +352,8 @@ def main(argv: list[str] | None = None) -> None:
     args = parser.parse_args(argv)
     stance = stance_params()
     base = kick_params(args.start or args.section)
+    if args.start_checkpoint is not None:
+        base = KickParams(**json.loads(args.start_checkpoint.read_text())["best"]["params"])
     objective = Objective(cap_m=args.cap_m, time_weight_m_per_s=args.time_weight,
                           direction_m_per_deg=args.direction_weight)
     real = args.backend != "mujoco"
@@ -387,6 +392,7 @@ def main(argv: list[str] | None = None) -> None:
                       f"{args.generations} --sigma {args.sigma} --cap-m {args.cap_m} --time-weight {args.time_weight} "
                       f"--direction-weight {args.direction_weight}"
                       f"{' --start ' + args.start if args.start else ''}"
+                      f"{' --start-checkpoint ' + str(args.start_checkpoint) if args.start_checkpoint else ''}"
                       f"{' --only ' + args.only if args.only else ''}"
                       f"{' --backend ' + args.backend if real else ''}, "
                       f"{datetime.date.today().isoformat()}")

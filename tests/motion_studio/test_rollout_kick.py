@@ -1,6 +1,7 @@
 """The real-server kick rollout (motion_studio.realserver.rollout_kick) without the real server: truth from a
 recorded real monitor stream, the kick measured from truth, the trainer commands' timing, the re-exec into the
-private namespace, and the kick tuner's backends (``--backend real|both``) on stand-in rollouts."""
+private namespace, the kick tuner's backends (``--backend real|both``) and the two-server kick check on stand-in
+rollouts."""
 
 from __future__ import annotations
 
@@ -168,3 +169,21 @@ def test_tuning_on_a_backend_checkpoints_and_resumes(tmp_path):
     again = tune_kick.tune("kick", base, stance, dimension, tune_kick.Objective(), 2, checkpoint, popsize=4,
                            progress=lambda text: None, backends=backends)
     assert len(again["evaluations"]) == 8
+
+
+def test_kick_check_measures_every_motion_offset_and_server():
+    from motion_studio.realserver import kick_check
+
+    distances = {"real": 1.0, "ours": 4.0}
+    servers = {name: (lambda lib, motion, placement, name=name: _fake_run(distances[name] + placement.forward_m * 10,
+                                                                         placement, fell=name == "real"))
+               for name in distances}
+    rows = kick_check.measure_kicks(None, ["kick"], [-0.02, 0.0, 0.02], servers)
+    expected = [(offset, server) for offset in (-0.02, 0.0, 0.02) for server in ("real", "ours")]
+    assert [(r["offset_m"], r["server"]) for r in rows] == expected
+    figures = kick_check.summary(rows)["kick"]
+    assert figures["real"] == {"mean_m": 1.0, "min_m": 0.8, "direction_mean_deg": 0.0, "direction_max_deg": 0.0,
+                               "falls": 3, "kicks": 3}
+    assert figures["ours"]["mean_m"] == 4.0 and figures["ours"]["falls"] == 0
+    text = kick_check.table(rows)
+    assert "kick on real: mean 1.00 m, min 0.80 m" in text and "kick on ours: mean 4.00 m, min 3.80 m" in text
