@@ -134,8 +134,11 @@ for _case in list(CASES.values()):
 CASES["standup_back"] = replace(CASES["standup_back"], motion="standup_back")
 CASES["standup_front"] = replace(CASES["standup_front"], motion="standup_front")
 
-#: Raw joint velocities [rad/s] by cycle of the skill phase that knock the robot over: both hips at 3 rad/s tip it
-#: onto its back (as tests/sim/fixtures/real_0.7.3_fall); hips at -1.5 and ankles at -3 rad/s onto its front.
+#: Raw joint velocities [rad/s] by cycle of the skill phase that knock the robot over: both hips at 3 rad/s (as
+#: tests/sim/fixtures/real_0.7.3_fall), hips at -1.5 and ankles at -3 rad/s. Measured on both servers, the first
+#: tips the robot forward onto its front (the agent then plays standup_front) and the second onto its back
+#: (standup_back plays), although they are the cases standup_back and standup_front (names kept: the fixtures
+#: carry them; transfer.LIES_ON).
 FALL_SCRIPT = {
     "back": {0: {"lle3": 3.0, "rle3": 3.0}, 40: {"lle3": 0.0, "rle3": 0.0}},
     "front": {0: {"lle3": -1.5, "rle3": -1.5, "lle5": -3.0, "rle5": -3.0},

@@ -42,6 +42,11 @@ WALK_20M = Case("walk_20m", lambda: SkillSequence((PlayMotion("walk_forward", re
 WALK_DIRECTIONS = {"walk_forward": (1.0, 0.0), "walk_backward": (-1.0, 0.0), "walk_left": (0.0, 1.0),
                    "walk_right": (0.0, -1.0)}
 STANDUP_CASES = ("standup_back", "standup_front")
+#: The side each stand-up case's robot really lies on, measured on both servers 2.7 s into the skill phase:
+#: standup_back's fall script tips it forward (torso forward axis z -0.5, up axis z -0.85, centre at 0.19 m) and
+#: the agent plays standup_front; standup_front's tips it onto its back (forward axis z 0.97) and standup_back
+#: plays. The case names are kept: the recorded fixtures carry them.
+LIES_ON = {"standup_back": "front", "standup_front": "back"}
 #: Lying start variations (uniform, seeded): factor on the fall script's joint velocities, cycles added to its
 #: stop step, cycles added to the settle time before it.
 FALL_SPEED_SCALE = (0.85, 1.15)

@@ -8,7 +8,8 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from motion_studio.realserver.cases import CYCLE_S
-from motion_studio.realserver.transfer import STANDUP_CASES, WALK_20M, WALK_DIRECTIONS, Pair, Transfer, run_name
+from motion_studio.realserver.transfer import (LIES_ON, STANDUP_CASES, WALK_20M, WALK_DIRECTIONS, Pair, Transfer,
+                                               run_name)
 
 #: Row labels of the single-run cases, in table order: (case, figure key, label).
 SINGLE_ROWS = (
@@ -72,10 +73,10 @@ def rows(pairs: list[Pair], figures: dict[str, dict], starts: int, absent: str =
         out.append(Row(label, pair_figures["real"].get(key, math.nan), pair_figures["ours"].get(key, math.nan),
                        "; ".join(filter(None, [note, *by_name[case].notes[1:]]))))
     for case in STANDUP_CASES:
-        side = case.removeprefix("standup_")
+        side = f"from {LIES_ON[case]} ({case})"
         runs = [name for name, pair in by_name.items() if pair.case.name == case]
         if not runs:
-            out.append(Row(f"stand-up {side}: stood [of starts]", math.nan, math.nan, absent))
+            out.append(Row(f"stand-up {side}: stood 1 s > 0.30 m", math.nan, math.nan, absent))
             continue
         counts, times, falls = {}, {}, {}
         for where in ("real", "ours"):
@@ -87,9 +88,9 @@ def rows(pairs: list[Pair], figures: dict[str, dict], starts: int, absent: str =
             times[where] = statistics.median(stood_times) if stood_times else math.nan
         note = f"{len(runs)} of {starts} starts" if len(runs) < starts else ""
         no_fall = ", ".join(f"{where}: {n} did not fall" for where, n in falls.items() if n)
-        out.append(Row(f"stand-up {side}: stood (torso > 0.30 m for 1 s)", counts["real"], counts["ours"],
+        out.append(Row(f"stand-up {side}: stood 1 s > 0.30 m", counts["real"], counts["ours"],
                        "; ".join(filter(None, [note, no_fall])), len(runs), len(runs)))
-        out.append(Row(f"stand-up {side}: time to stand, median [s]", times["real"], times["ours"]))
+        out.append(Row(f"stand-up {side}: median time [s]", times["real"], times["ours"]))
     if WALK_20M.name in by_name:
         walk = figures[WALK_20M.name]
         out.append(Row("20 m forward walk: falls", walk["real"].get("falls", math.nan),
@@ -176,7 +177,7 @@ def plot(pairs: list[Pair], rows_: list[Row], out_dir: Path) -> list[Path]:
                     heights = [t.torso_m[2] for t in run.truths if t is not None]
                     ax.plot(times, heights, style, color=colour, linewidth=0.8, alpha=0.7)
             ax.axhline(0.30, color="grey", linewidth=0.8)
-            ax.set_title(f"{case}: torso height (real solid, ours dashed)")
+            ax.set_title(f"{case} (lies on its {LIES_ON[case]}): torso height\n(real solid, ours dashed)")
             ax.set_xlabel("time since the skill phase began [s]")
         axes[0].set_ylabel("torso centre z [m]")
         fig.tight_layout()
