@@ -15,10 +15,11 @@ from typer.testing import CliRunner
 
 from motion_studio.cli import _register_commands, app
 from motion_studio.realserver import transfer, transfer_report
-from motion_studio.realserver.cases import FALL_SCRIPT_CYCLES
+from motion_studio.realserver.cases import CASES, FALL_SCRIPT_CYCLES
 from motion_studio.realserver.errors import FixtureError
 from motion_studio.realserver.fixtures import fixture_path, read_fixture
 from motion_studio.realserver.measures import stood_index
+from motion_studio.realserver.skill_figures import figures
 from motion_studio.realserver.skill_runs import Run
 from motion_studio.scenarios import Truth
 
@@ -74,6 +75,8 @@ def test_an_upright_torso_below_030_m_has_not_stood() -> None:
     run = Run("real", _truths([0.1] * lying + [0.28] * 250, [0.0] * lying + [1.0] * 250))
     assert stood_index(run.truths) is None
     assert transfer.standup_outcome(run).outcome == "lying"
+    # the per-case check uses the same rule (it used to report this robot as stood up: up axis z > 0.9)
+    assert math.isnan(figures(run, CASES["standup_front"])["stood up after [s]"])
 
 
 def test_stood_needs_a_full_second_above_030_m() -> None:
