@@ -10,16 +10,17 @@ broken trace cannot hide the others. The score of a trace is the mean of its err
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
-from motion_studio.calibration.replay import Replay
-from motion_studio.calibration.traces import Pose
+from agent.protocol.perceptors import Sense
+from agent.protocol.sense import parse_sense
+from motion_studio.realserver.fixtures import Fixture
+from motion_studio.realserver.measures import displacement_m, fallen, turned_deg
+from motion_studio.realserver.replay import ReplayStates
+from motion_studio.scenarios import Truth
 
-#: REFERENCE §8.1's fall criterion: up-axis z below this [-] or torso centre below FALL_TORSO_Z_M [m].
-FALL_UP_Z = 0.6
-FALL_TORSO_Z_M = 0.25
 ERROR_CAP = 5.0
 LEG_JOINTS = tuple(f"{side}lj{n}" for side in "lr" for n in range(1, 7))
 #: Cycles of the skill phase over which leg joints are compared (open loop, errors add up after that).
@@ -42,39 +43,34 @@ def _measure(name: str, real: float, ours: float, scale: float, unit: str) -> Me
     return Measure(name, real, ours, unit, min(error, ERROR_CAP))
 
 
-def turned_deg(poses: dict[int, Pose], cycles: list[int]) -> float:
-    """Heading change summed cycle by cycle (unwrapped) [deg]."""
-    headings = [poses[i].heading_deg for i in cycles]
-    return float(sum((b - a + 180.0) % 360.0 - 180.0 for a, b in zip(headings, headings[1:])))
+@dataclass
+class Replay:
+    """Both sides of one recorded session: the real recording and our replay of its commands."""
+
+    fixture: Fixture
+    states: ReplayStates
+    _parsed: dict[tuple[str, int], Sense] = field(default_factory=dict, repr=False)
+
+    @property
+    def real(self) -> dict[int, Truth]:
+        return self.fixture.truth
+
+    @property
+    def ours(self) -> dict[int, Truth]:
+        return self.states.ours
+
+    def sense(self, side: str, index: int) -> Sense:
+        """Sense message ``index`` of ``side`` ("real" or "ours"), parsed once."""
+        key = (side, index)
+        if key not in self._parsed:
+            messages = self.fixture.received if side == "real" else self.states.messages
+            self._parsed[key] = parse_sense(messages[index])
+        return self._parsed[key]
 
 
-def displacement_m(poses: dict[int, Pose], cycles: list[int]) -> tuple[float, float]:
-    """(forward, left) of the last pose in the frame of the first [m]."""
-    first, last = poses[cycles[0]], poses[cycles[-1]]
-    c, s = math.cos(math.radians(first.heading_deg)), math.sin(math.radians(first.heading_deg))
-    dx, dy = last.torso_m[0] - first.torso_m[0], last.torso_m[1] - first.torso_m[1]
-    return c * dx + s * dy, -s * dx + c * dy
-
-
-def first_fall(poses: dict[int, Pose], cycles: list[int]) -> int | None:
+def _first_fall(poses: dict[int, Truth], cycles: list[int]) -> int | None:
     """Index in ``cycles`` of the first fallen pose, None if the robot stayed up."""
-    return next((k for k, i in enumerate(cycles)
-                 if poses[i].up_z < FALL_UP_Z or poses[i].torso_m[2] < FALL_TORSO_Z_M), None)
-
-
-def stood_up_after_fall(poses: dict[int, Pose], cycles: list[int], height_m: float = 0.30,
-                        hold_cycles: int = 50) -> int | None:
-    """Index in ``cycles`` where the torso centre has been above ``height_m`` for ``hold_cycles`` after the first
-    fall, None if never (the transfer issue's "stood up": height held 1 s, not tilt alone)."""
-    fallen = first_fall(poses, cycles)
-    if fallen is None:
-        return None
-    run = 0
-    for k in range(fallen, len(cycles)):
-        run = run + 1 if poses[cycles[k]].torso_m[2] > height_m else 0
-        if run >= hold_cycles:
-            return k - hold_cycles + 1
-    return None
+    return next((k for k, i in enumerate(cycles) if fallen(poses[i])), None)
 
 
 def measures(replay: Replay) -> list[Measure]:
@@ -86,24 +82,26 @@ def measures(replay: Replay) -> list[Measure]:
 
 def _pose_measures(replay: Replay) -> list[Measure]:
     real, ours = replay.real, replay.ours
-    cycles = [i for i in sorted(real) if i >= replay.trace.skill_cycle and i in ours]
+    cycles = [i for i in sorted(real) if i >= replay.fixture.skill_cycle and i in ours]
     if len(cycles) < 2:
         return []
     out: list[Measure] = []
-    real_move, our_move = displacement_m(real, cycles), displacement_m(ours, cycles)
+    real_move = displacement_m(real[cycles[0]], real[cycles[-1]])
+    our_move = displacement_m(ours[cycles[0]], ours[cycles[-1]])
     walked = math.hypot(*real_move)
     out.append(Measure("displacement_m", walked, math.hypot(*our_move), "m",
                        min(math.dist(real_move, our_move) / (0.1 + 0.1 * walked), ERROR_CAP)))
     # A lying torso's heading is meaningless (its forward axis points up or down): turns count while both stand.
-    falls = [k for k in (first_fall(real, cycles), first_fall(ours, cycles)) if k is not None]
+    falls = [k for k in (_first_fall(real, cycles), _first_fall(ours, cycles)) if k is not None]
     upright = cycles[:min(falls)] if falls else cycles
     if len(upright) > 1:
-        real_turn = turned_deg(real, upright)
-        out.append(_measure("turn_deg", real_turn, turned_deg(ours, upright), 5.0 + 0.05 * abs(real_turn), "deg"))
+        real_turn = turned_deg([real[i] for i in upright])
+        our_turn = turned_deg([ours[i] for i in upright])
+        out.append(_measure("turn_deg", real_turn, our_turn, 5.0 + 0.05 * abs(real_turn), "deg"))
     heights = np.array([[real[i].torso_m[2], ours[i].torso_m[2]] for i in cycles])
     out.append(Measure("height_m", float(heights[:, 0].mean()), float(heights[:, 1].mean()), "m",
                        min(float(np.abs(heights[:, 0] - heights[:, 1]).mean()) / 0.01, ERROR_CAP)))
-    real_fall, our_fall = first_fall(real, cycles), first_fall(ours, cycles)
+    real_fall, our_fall = _first_fall(real, cycles), _first_fall(ours, cycles)
     nan = float("nan")
     if (real_fall is None) != (our_fall is None):
         out.append(Measure("fall_cycle", nan if real_fall is None else real_fall,
@@ -128,8 +126,8 @@ def _pose_measures(replay: Replay) -> list[Measure]:
 
 
 def _joint_measures(replay: Replay, joints: tuple[str, ...] | None, scale_deg: float) -> list[Measure]:
-    start = replay.trace.skill_cycle
-    stop = min(len(replay.trace.received), len(replay.our_messages), start + JOINT_WINDOW_CYCLES)
+    start = replay.fixture.skill_cycle
+    stop = min(len(replay.fixture.received), len(replay.states.messages), start + JOINT_WINDOW_CYCLES)
     errors = []
     for i in range(start, stop):
         real, ours = replay.sense("real", i).joints, replay.sense("ours", i).joints
@@ -142,7 +140,7 @@ def _joint_measures(replay: Replay, joints: tuple[str, ...] | None, scale_deg: f
 
 
 def _force_measures(replay: Replay) -> list[Measure]:
-    stop = min(len(replay.trace.received), len(replay.our_messages))
+    stop = min(len(replay.fixture.received), len(replay.states.messages))
     real, ours = [], []
     for i in range(stop):
         real.append(sum(f.force_n[2] for f in replay.sense("real", i).frp.values()))

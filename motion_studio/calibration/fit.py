@@ -16,11 +16,11 @@ from pathlib import Path
 
 import numpy as np
 
-from motion_studio.calibration.agreement import Measure, measures, score
+from motion_studio.calibration.agreement import Measure, Replay, measures, score
 from motion_studio.calibration.errors import CalibrationError
-from motion_studio.calibration.replay import replay_trace
-from motion_studio.calibration.traces import Trace
 from motion_studio.cmaes import CMAES
+from motion_studio.realserver.fixtures import Fixture
+from motion_studio.realserver.replay import replay_states
 from sim.physics_params import PhysicsParams
 
 #: Objective added per blow-up of the physics during a replay.
@@ -121,7 +121,7 @@ class Evaluation:
     blow_ups: int
 
 
-def evaluate(traces: list[Trace], params: PhysicsParams, values: dict[str, float] | None = None,
+def evaluate(traces: list[Fixture], params: PhysicsParams, values: dict[str, float] | None = None,
              ball_roll: bool = True) -> Evaluation:
     """Replay every trace with ``params`` and score the agreement (with the real ball-roll figures unless
     ``ball_roll`` is False)."""
@@ -134,18 +134,18 @@ def evaluate(traces: list[Trace], params: PhysicsParams, values: dict[str, float
         details["ball_roll"] = ball_roll_measures(params)
         scores["ball_roll"] = score(details["ball_roll"])
     for trace in traces:
-        run = replay_trace(trace, params)
-        found = measures(run)
+        states = replay_states(trace, params)
+        found = measures(Replay(trace, states))
         details[trace.name] = found
         scores[trace.name] = score(found)
-        blow_ups += run.blow_ups
+        blow_ups += states.blow_ups
     objective = float(np.mean(list(scores.values()))) + BLOW_UP_PENALTY * blow_ups
     if not math.isfinite(objective):
         objective = float("inf")
     return Evaluation(values or {}, objective, scores, details, blow_ups)
 
 
-def fit(traces: list[Trace], base: PhysicsParams, parameters: tuple[FitParameter, ...], run_dir: Path,
+def fit(traces: list[Fixture], base: PhysicsParams, parameters: tuple[FitParameter, ...], run_dir: Path,
         generations: int, popsize: int | None = None, sigma: float = 0.25, seed: int = 0,
         on_evaluation: Callable[[int, Evaluation], None] | None = None, ball_roll: bool = True) -> Evaluation:
     """CMA-ES from ``base`` over ``parameters``; resumes from ``run_dir``'s checkpoint. Returns the best

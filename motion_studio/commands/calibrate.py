@@ -17,7 +17,7 @@ PROJECT = Path(__file__).resolve().parents[2]
 
 @app.command()
 def calibrate(
-    traces: Annotated[Path, typer.Option(help="folder of recorded real traces (real_*.jsonl[.gz])")] =
+    traces: Annotated[Path, typer.Option(help="folder of recorded real traces (real_*.jsonl.gz)")] =
         PROJECT / "tests" / "sim" / "fixtures",
     generations: Annotated[int, typer.Option(min=0, max=500, help="CMA-ES generations (0: only report the "
                                                                   "agreement of the current parameters)")] = 0,
@@ -35,21 +35,22 @@ def calibrate(
     from motion_studio.calibration.errors import CalibrationError
     from motion_studio.calibration.fit import PARAMETER_SETS, evaluate, fit
     from motion_studio.calibration.report import agreement_table, plot_agreement, write_physics_file
-    from motion_studio.calibration.traces import find_traces, load_trace
+    from motion_studio.realserver.errors import FixtureError
+    from motion_studio.realserver.fixtures import find_fixture_files, read_fixture
     from sim.physics_params import CALIBRATED_FILE, default_physics_params
 
     if parameters not in PARAMETER_SETS:
         typer.echo(f"error: --parameters {parameters!r}: choose from {', '.join(PARAMETER_SETS)}", err=True)
         raise typer.Exit(2)
-    paths = [p for p in find_traces(traces) if not only or any(o in p.name for o in only)]
+    paths = [p for p in find_fixture_files(traces) if not only or any(o in p.name for o in only)]
     if not paths:
-        typer.echo(f"error: --traces {traces}: no real_*.jsonl[.gz] trace files there", err=True)
+        typer.echo(f"error: --traces {traces}: no real_*.jsonl.gz trace files there", err=True)
         raise typer.Exit(2)
     loaded = []
     for path in paths:
         try:
-            loaded.append(load_trace(path))
-        except CalibrationError as error:
+            loaded.append(read_fixture(path, require_meta=False))
+        except FixtureError as error:
             typer.echo(f"skipped: {error}", err=True)
     if not loaded:
         raise typer.Exit(2)

@@ -66,7 +66,13 @@ class Fixture:
 
     @property
     def skill_cycle(self) -> int:
-        return int(self.meta["skill_cycle"])
+        """First cycle of the skill phase (0 for a scripted session without a meta line)."""
+        return int(self.meta.get("skill_cycle", 0))
+
+    @property
+    def name(self) -> str:
+        """``real_0.7.3_skill_walk_forward.jsonl.gz`` -> ``skill_walk_forward``."""
+        return self.path.name.removesuffix(".gz").removesuffix(".jsonl").removeprefix("real_0.7.3_")
 
 
 def _truth(row: dict) -> Truth:
@@ -74,8 +80,14 @@ def _truth(row: dict) -> Truth:
                  float(row["heading_deg"]), tuple(float(v) for v in row["ball"]), False)
 
 
-def read_fixture(path: Path) -> Fixture:
-    """Read a skill fixture.
+def find_fixture_files(folder: Path) -> list[Path]:
+    """The recorded sessions of a folder (``real_*.jsonl.gz``: skill fixtures and scripted traces), sorted."""
+    return sorted(p for p in Path(folder).glob("real_*.jsonl.gz") if p.is_file())
+
+
+def read_fixture(path: Path, require_meta: bool = True) -> Fixture:
+    """Read a skill fixture (or, with ``require_meta`` False, also a scripted trace: sends and sense messages
+    without a meta line or truth, as ``motion-studio real trace`` records).
 
     Raises:
         FixtureError: the file is missing, not gzip JSON lines, a line lacks a field or has a bad value, or the
@@ -116,10 +128,14 @@ def read_fixture(path: Path) -> Fixture:
         raise FixtureError(path, number, f"missing field {error}") from None
     except (TypeError, ValueError, AttributeError) as error:
         raise FixtureError(path, number, f"bad value ({error})") from None
-    if meta is None:
+    if meta is None and require_meta:
         raise FixtureError(path, 0, "no meta line")
     if -1 not in replies:
         raise FixtureError(path, 0, "no scene command (a 'send' line with i = -1)")
+    if not received:
+        raise FixtureError(path, 0, "no sense messages ('recv' lines)")
+    if meta is None:
+        return Fixture(path, {}, replies, received, truth)
     if len(received) <= int(meta["skill_cycle"]):
         raise FixtureError(path, 0, f"{len(received)} sense messages, the skill starts at {meta['skill_cycle']}")
     return Fixture(path, meta, replies, received, truth)

@@ -7,32 +7,48 @@ our agent would give on our simulator; joint errors add up over long closed-loop
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 from agent.agent import Agent, AgentConfig
 from motion_studio.realserver.cases import TEAM, UNUM, Case, MotionSource, behavior
 from motion_studio.realserver.fixtures import Fixture
 from motion_studio.realserver.skill_runs import Run, ScriptedAgent, record_completions
 from motion_studio.scenarios import Truth
+from sim.physics_params import PhysicsParams
 
 
-def replay(fixture: Fixture) -> tuple[Run, Run]:
-    """The real run as recorded and ours replaying its commands, both indexed as ``skill_runs.Run`` (truth
-    ``j`` = the state sense message ``skill_cycle + 1 + j`` reports). Completions are unknown (empty)."""
+@dataclass
+class ReplayStates:
+    """Our side of a replay: the state each sense message i reports (``ours[i]``), the sense messages our
+    server sent, and how often the blow-up guard fired and the referee called a self-collision foul."""
+
+    ours: dict[int, Truth]
+    messages: list[bytes]
+    blow_ups: int
+    fouls: int
+
+
+def replay_states(fixture: Fixture, physics: PhysicsParams | None = None) -> ReplayStates:
+    """Replay ``fixture``'s commands on a fresh engine (the full referee: PlayOn rules and self-collision fouls,
+    as the real server) with ``physics`` (the default parameters if None)."""
     from sim.engine import SimEngine
     from sim.inprocess import InProcessHost
     from sim.rules.trainer import apply_trainer_message
 
     agent = ScriptedAgent(fixture.replies)
-    engine = SimEngine(seed=0)  # the full referee: PlayOn rules and self-collision fouls, as the real server
+    engine = SimEngine(seed=0, physics=physics)
     host = InProcessHost(engine)
     key = host.add(agent)
     world = engine.world
-    move_cycle = int(fixture.meta["move_cycle"])
+    move_cycle = fixture.meta.get("move_cycle")
     ours: dict[int, Truth] = {}
     blow_ups = world.divergences
-    while agent.received < len(fixture.received):
+    for _ in range(4 * len(fixture.received) + 100):   # a scene that never makes a robot must not hang
+        if agent.received >= len(fixture.received):
+            break
         count = agent.received
         host.run(1)
-        if agent.received == count:
+        if agent.received == count or key not in world.by_key:
             continue
         index = agent.received - 1
         # the engine delivers the message made at the end of the previous step, then steps: the world now
@@ -44,12 +60,19 @@ def replay(fixture: Fixture) -> tuple[Run, Run]:
             # the trainer commands went out with the answer to this message: applied before the next step
             for command in fixture.meta["trainer"]:
                 apply_trainer_message(command, engine.referee, world)
+    return ReplayStates(ours, agent.messages, world.divergences - blow_ups, len(getattr(engine.referee, "fouls", [])))
+
+
+def replay(fixture: Fixture, physics: PhysicsParams | None = None) -> tuple[Run, Run]:
+    """The real run as recorded and ours replaying its commands, both indexed as ``skill_runs.Run`` (truth
+    ``j`` = the state sense message ``skill_cycle + 1 + j`` reports). Completions are unknown (empty)."""
+    states = replay_states(fixture, physics)
     first = fixture.skill_cycle + 1
     cycles = range(first, len(fixture.received) + 1)
     real = Run("real", [fixture.truth.get(i) for i in cycles])
-    sim = Run("sim (replay)", [ours.get(i) for i in cycles])
-    sim.blow_ups = world.divergences - blow_ups
-    sim.fouls = len(getattr(engine.referee, "fouls", []))
+    sim = Run("sim (replay)", [states.ours.get(i) for i in cycles])
+    sim.blow_ups = states.blow_ups
+    sim.fouls = states.fouls
     return real, sim
 
 

@@ -121,13 +121,18 @@ class ScriptedAgent:
 
     def __init__(self, replies: dict[int, bytes]) -> None:
         self.replies = replies
-        self.received = 0
+        self.messages: list[bytes] = []
+        """The sense messages it got, in order."""
+
+    @property
+    def received(self) -> int:
+        return len(self.messages)
 
     def connect_message(self) -> bytes:
         return self.replies[-1]
 
     def step(self, sense: bytes) -> bytes:
-        self.received += 1
+        self.messages.append(sense)
         return self.replies.get(self.received - 1, b"(syn)")
 
 

@@ -12,19 +12,27 @@ from pathlib import Path
 
 import pytest
 
-from motion_studio.calibration.agreement import measures, score, stood_up_after_fall
-from motion_studio.calibration.errors import CalibrationError
+from motion_studio.calibration.agreement import Replay, measures, score
 from motion_studio.calibration.fit import evaluate, with_values
-from motion_studio.calibration.replay import replay_trace
 from motion_studio.calibration.report import write_physics_file
-from motion_studio.calibration.traces import Pose, find_traces, load_trace
+from motion_studio.realserver.errors import FixtureError
+from motion_studio.realserver.fixtures import find_fixture_files, read_fixture
+from motion_studio.realserver.replay import replay_states
 from sim.physics_params import default_physics_params, load_physics_file
+
+
+def load_trace(path: Path):  # noqa: ANN201 - realserver.fixtures.Fixture
+    return read_fixture(path, require_meta=False)
+
+
+def replay_trace(trace, physics=None) -> Replay:  # noqa: ANN001
+    return Replay(trace, replay_states(trace, physics))
 
 FIXTURES = Path(__file__).parents[1] / "sim" / "fixtures"
 
 
 def test_every_fixture_loads() -> None:
-    paths = find_traces(FIXTURES)
+    paths = find_fixture_files(FIXTURES)
     assert len(paths) >= 15
     for path in paths:
         trace = load_trace(path)
@@ -37,40 +45,32 @@ def test_a_corrupt_line_is_named_with_file_and_line(tmp_path: Path) -> None:
     path = tmp_path / "real_0.7.3_broken.jsonl.gz"
     with gzip.open(path, "wt") as stream:
         stream.write("\n".join(rows))
-    with pytest.raises(CalibrationError, match=r"real_0.7.3_broken.jsonl.gz:3: not JSON"):
+    with pytest.raises(FixtureError, match=r"real_0.7.3_broken.jsonl.gz:3: not JSON"):
         load_trace(path)
 
 
 def test_a_line_without_its_field_is_named(tmp_path: Path) -> None:
-    path = tmp_path / "real_x.jsonl"
-    path.write_text(json.dumps({"k": "send", "i": -1, "msg": "(scene a)"}) + "\n" + json.dumps({"k": "recv"}) + "\n")
-    with pytest.raises(CalibrationError, match=r"real_x.jsonl:2: missing field 'msg'"):
+    path = tmp_path / "real_x.jsonl.gz"
+    with gzip.open(path, "wt") as stream:
+        stream.write(json.dumps({"k": "send", "i": -1, "msg": "(scene a)"}) + "\n" + json.dumps({"k": "recv"}) + "\n")
+    with pytest.raises(FixtureError, match=r"real_x.jsonl.gz:2: missing field 'msg'"):
         load_trace(path)
 
 
 def test_a_missing_trace_is_named(tmp_path: Path) -> None:
-    with pytest.raises(CalibrationError, match="no such trace file"):
+    with pytest.raises(FixtureError, match="no such fixture file"):
         load_trace(tmp_path / "real_none.jsonl.gz")
 
 
-def test_the_standing_replay_agrees_and_a_walk_tells_broken_friction() -> None:
+def test_the_standing_replay_agrees_and_a_turn_tells_broken_friction() -> None:
     stand = replay_trace(load_trace(FIXTURES / "real_0.7.3_skill_stand.jsonl.gz"))
     assert score(measures(stand)) < 0.2   # measured 0.02: height within 1 mm, no drift
-    walk = load_trace(FIXTURES / "real_0.7.3_skill_walk_left.jsonl.gz")
-    faithful = score(measures(replay_trace(walk)))
-    icy = score(measures(replay_trace(walk, default_physics_params(friction=0.05))))
-    assert faithful < 1.0            # measured 0.68
-    assert icy > faithful + 0.5      # feet that slide cannot walk 2.6 m sideways
-
-
-def test_stood_up_needs_the_torso_high_for_a_second_not_tilt_alone() -> None:
-    lying = Pose((0, 0, 0.12), 0.1, 0, (0, 0, 0))
-    tilted_low = Pose((0, 0, 0.27), 0.99, 0, (0, 0, 0))   # upright torso but crouched: not stood
-    up = Pose((0, 0, 0.33), 0.99, 0, (0, 0, 0))
-    low = {i: lying for i in range(20)} | {i: tilted_low for i in range(20, 200)}
-    assert stood_up_after_fall(low, list(range(200))) is None
-    high = {i: lying for i in range(20)} | {i: up for i in range(20, 200)}
-    assert stood_up_after_fall(high, list(range(200))) == 20
+    turn = load_trace(FIXTURES / "real_0.7.3_skill_turn_left.jsonl.gz")
+    faithful = score(measures(replay_trace(turn)))
+    icy = measures(replay_trace(turn, default_physics_params(friction=0.05)))
+    assert faithful < 0.5                 # measured 0.22: 632 deg against the real 607
+    turned = next(m for m in icy if m.name == "turn_deg")
+    assert turned.ours < 0.5 * turned.real and score(icy) > faithful + 0.5   # measured 81 deg: feet slip
 
 
 def test_fitted_values_round_trip_through_the_physics_file(tmp_path: Path) -> None:
