@@ -17,7 +17,7 @@ import numpy as np
 from agent.protocol.perceptors import Sense
 from agent.protocol.sense import parse_sense
 from motion_studio.realserver.fixtures import Fixture
-from motion_studio.realserver.measures import displacement_m, fallen, turned_deg
+from motion_studio.realserver.measures import displacement_m, fallen, stood_index, turned_deg
 from motion_studio.realserver.replay import ReplayStates
 from motion_studio.scenarios import Truth
 
@@ -111,6 +111,17 @@ def _pose_measures(replay: Replay) -> list[Measure]:
         after = slice(real_fall, None)
         out.append(_measure("peak_height_after_fall_m", max(h for h in heights[after, 0]),
                             max(h for h in heights[after, 1]), 0.03, "m"))
+        # the transfer issue's outcome: stood up (torso centre above 0.30 m for 1 s) after the fall, or not
+        low = min(real_fall, our_fall)
+        lying = next((k for k in range(low, len(cycles)) if heights[k].max() < 0.30), None)
+        if lying is not None:
+            real_stood = stood_index([real[i] for i in cycles], lying)
+            our_stood = stood_index([ours[i] for i in cycles], lying)
+            if (real_stood is None) != (our_stood is None):
+                out.append(Measure("stood_up_cycle", nan if real_stood is None else real_stood,
+                                   nan if our_stood is None else our_stood, "cycle", 3.0))
+            elif real_stood is not None and our_stood is not None:
+                out.append(_measure("stood_up_cycle", real_stood, our_stood, 15.0, "cycle"))  # 0.3 s
     ball_real = math.dist(real[cycles[0]].ball_m[:2], real[cycles[-1]].ball_m[:2])
     ball_ours = math.dist(ours[cycles[0]].ball_m[:2], ours[cycles[-1]].ball_m[:2])
     if max(ball_real, ball_ours) > 0.05:

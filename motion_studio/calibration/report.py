@@ -23,6 +23,15 @@ def agreement_table(before: Evaluation, after: Evaluation | None = None) -> str:
     return "\n".join(lines)
 
 
+def measure_table(result: Evaluation) -> str:
+    """Every measure of every trace: real, ours, unit, error."""
+    lines = [f"{'trace':28s} {'measure':26s} {'real':>10s} {'ours':>10s} unit       error"]
+    for name, found in result.details.items():
+        for m in found:
+            lines.append(f"{name:28s} {m.name:26s} {m.real:10.4g} {m.ours:10.4g} {m.unit:10s} {m.error:5.2f}")
+    return "\n".join(lines)
+
+
 def plot_agreement(before: Evaluation, after: Evaluation | None, path: Path) -> Path:
     """A bar chart of the per-trace scores before and after, as PNG."""
     import matplotlib

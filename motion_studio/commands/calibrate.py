@@ -27,6 +27,7 @@ def calibrate(
         Path("out/calibrate"),
     write: Annotated[bool, typer.Option(help="write the fitted values into sim/physics_calibrated.toml")] = False,
     parameters: Annotated[str, typer.Option(help="what to fit: contact (robot contacts), ball, or all")] = "contact",
+    details: Annotated[bool, typer.Option(help="print every measure of every trace (real / ours, error)")] = False,
     only: Annotated[list[str] | None, typer.Option(help="use only traces whose name contains this (repeatable); "
                                                         "'ball_roll' is the real ball-roll figure")] = None,
 ) -> None:
@@ -34,7 +35,8 @@ def calibrate(
     contact parameters (friction, impratio, solimp, solref) to them; a killed fit resumes from --out."""
     from motion_studio.calibration.errors import CalibrationError
     from motion_studio.calibration.fit import PARAMETER_SETS, evaluate, fit
-    from motion_studio.calibration.report import agreement_table, plot_agreement, write_physics_file
+    from motion_studio.calibration.report import (agreement_table, measure_table, plot_agreement,
+                                                  write_physics_file)
     from motion_studio.realserver.errors import FixtureError
     from motion_studio.realserver.fixtures import find_fixture_files, read_fixture
     from sim.physics_params import CALIBRATED_FILE, default_physics_params
@@ -80,6 +82,8 @@ def calibrate(
             raise typer.Exit(2) from None
         bar.close()
     typer.echo(agreement_table(before, after))
+    if details:
+        typer.echo(measure_table(after or before))
     png = plot_agreement(before, after, out / "agreement.png")
     typer.echo(f"plot: {png}")
     if after is not None:

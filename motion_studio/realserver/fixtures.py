@@ -93,6 +93,7 @@ def read_fixture(path: Path, require_meta: bool = True) -> Fixture:
         FixtureError: the file is missing, not gzip JSON lines, a line lacks a field or has a bad value, or the
             file lacks its meta line, scene command or sense messages (file and line named; line 0 = the file).
     """
+    path = Path(path)
     if not path.is_file():
         raise FixtureError(path, 0, "no such fixture file")
     meta: dict | None = None
