@@ -100,6 +100,10 @@ class PhysicsParams:
     contact_solimp: tuple[float, float, float, float, float] = (0.2, 0.3, 0.001, 0.5, 2.0)
     """solimp of every contact: soft enough that a loaded foot sinks ~0.5 mm, as ODE's 1 mm surface layer
     lets it (calibrated on the real 0.7.3 traces, see the module docstring)."""
+    surface_layer_m: float = 0.0
+    """Depth a contact with static geometry may reach before it pushes back [m] (ODE's contact surface layer;
+    SimSpark: 0.001). Done as MuJoCo's margin/gap of the static geoms: detected from ``surface_layer_m``
+    above, active only below ``surface_layer_m`` deep, and the reference is that depth."""
     cone: str = "elliptic"
     """Friction cone: "elliptic" or "pyramidal"."""
     impratio: float = 1.0

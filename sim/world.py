@@ -160,6 +160,9 @@ class World:
             geom.condim = p.contact_condim
             geom.solref, geom.solimp = list(p.contact_solref), list(p.contact_solimp)
             geom.friction = [p.friction, 0.005, 0.0001]
+            if p.surface_layer_m > 0.0:
+                # active below margin - gap = -layer; MuJoCo's reference distance is that depth, as ODE's
+                geom.margin, geom.gap = -p.surface_layer_m, 0.0
         ball = spec.worldbody.add_body(name="ball", pos=[0.0, 0.0, BALL_RADIUS_M])
         ball.add_freejoint(name="ball")
         ball.add_geom(name="ball", type=mujoco.mjtGeom.mjGEOM_SPHERE, size=[BALL_RADIUS_M, 0, 0],

@@ -59,6 +59,7 @@ CONTACT_PARAMETERS: tuple[FitParameter, ...] = (
     FitParameter("contact_solref[0]", 0.02, 0.2, log=True),
     FitParameter("contact_solref[1]", 0.3, 3.0, log=True),
     FitParameter("noslip_iterations", 0, 20),
+    FitParameter("surface_layer_m", 0.0, 0.002),
 )
 #: The ball's contact parameters (its contacts with feet and ground take the ball's values).
 BALL_PARAMETERS: tuple[FitParameter, ...] = (
