@@ -20,6 +20,27 @@ commanded direction (or into the stop for 0), 1e-5 of it when commanded away fro
 into its stop therefore bounces between the stop and one step inside, so rule 3 lets every second command
 through (the real fall trace: a hip at 3 rad/s into its 100 deg stop alternates 100.24 / 96.81 deg).
 
+Stops hold in a flailing robot as ODE's do because no motor runs away in the step's solves. ODE solves each
+motor (|torque| <= bound, velocity = target unless at the bound) and stop row exactly; here `check` settles
+that by re-solving, and three rules keep its guesses from driving a joint through a stop: a servo on a
+lowered gain whose joint is driven more than `RUNAWAY_RAD_S` past its target velocity is held braking at the
+bound (the low gain braked with g |q̇ - u|, a tenth of the bound, and let coupled joints whip it on); a stop
+row released and then held again stays held for the rest of the step (released and held in turn it never
+settled); and the step's last solve, which `sim.world.World.step` keeps unchecked, is solved again from the
+step's start when a held motor or low-gain servo ran away in it or a released row let its joint into the
+stop (`RUNAWAY_RE_SOLVES`). Measured with arms and head at +-100 rad/s reversed every 1-3 or 3-14 cycles and
+the legs at random velocities, the same commands over TCP to the real 0.7.3 and to ours (10 x 500 cycles per
+pattern after 60 cycles standing; tests/sim/test_joint_stops.py runs the first pattern in-process): before,
+the last solve often held a light joint at a constant 10 N·m whose load had gone (an elbow spun to 131-152
+rad/s, a knee ended 35 deg past its stop at 31 rad/s), the blow-up guard reset the robot in 25 of 64,000
+flailing cycles in-process and 2 of 10,000 over TCP, and joints ended up to 29.8 deg past a stop; now the
+guard never fired (128,000 cycles) and over TCP 0.006 / 0.029 % of the joint-cycles end more than 7.5 deg
+past a stop, worst 16.8 / 14.6 deg (real server: 0.008 / 0.030 %, worst 12.9 / 16.9 deg; ours before: 0.029 /
+0.141 %, worst 29.8 / 21.1), arms and head within 7.0 / 12.1 deg (real 11.1 / 9.6; before 18.2 / 21.1). The
+cost: motor torques over 10.5 N·m under random +-6 rad/s commands 0.07 -> 0.16 % (8 seeds, worst 17 -> 28
+N·m). Of the real-trace replays, walk backward, turn, kick and stand are unchanged; the forward and side
+walks and both stand-ups meet a rule 1-12 times in 550-650 cycles and still pass their tests.
+
 All arrays hold one entry per hinge of every robot, robots in the order they were added; nothing here
 loops over joints in Python.
 """
@@ -46,6 +67,11 @@ STOP_FUDGE = 1e-5
 _STOP_PULL_TOLERANCE_NM = 1e-6
 #: Extra physics solves allowed in a step with a joint at a stop (see `MotorBank.extra_passes`).
 STOP_EXTRA_PASSES = 3
+#: The last solve of a step is kept unless a motor ran away in it: a held motor or a servo on a lowered gain
+#: whose joint ended this far past its target velocity, or a released stop row whose joint went into the stop
+#: this much faster than the row allows [rad/s]; then it is solved again, at most `RUNAWAY_RE_SOLVES` times.
+RUNAWAY_RAD_S = 1.0
+RUNAWAY_RE_SOLVES = 2
 
 
 @dataclass
@@ -99,6 +125,8 @@ class MotorBank:
         self._any_stop = False
         self._no_reset = np.zeros(0, dtype=bool)
         self._reset = self._no_reset      # held motors made stiff again in this step (overshoot)
+        self._pinned = self._no_reset     # stop rows held again after a release in this step
+        self._step_start: tuple[np.ndarray, np.ndarray, np.ndarray, float] | None = None
 
     # ---- robots --------------------------------------------------------------------------------------
     def add_robot(self, key: int, joints: tuple[JointSpec, ...]) -> None:
@@ -205,6 +233,7 @@ class MotorBank:
         self.stop_torque = self._no_bias
         self._no_reset = np.zeros(self.target.size, dtype=bool)
         self._reset = self._no_reset
+        self._pinned = self._no_reset
         self.stop_side = np.zeros(self.target.size, dtype=np.int8)
         self._at_stop = np.zeros(self.target.size, dtype=bool)
         self._any_stop = False
@@ -241,6 +270,9 @@ class MotorBank:
         self.bias = self._no_bias
         self.setpoint = self.target
         self._reset = self._no_reset
+        self._pinned = self._no_reset
+        # The step's start, for a solve of its own when the last one ran away (see `check`).
+        self._step_start = (data.qpos.copy(), data.qvel.copy(), data.qacc_warmstart.copy(), data.time)
         needed = load + inertia * error / h
         was_capped = self.gain < kv
         if self._any_stop:   # a released stop row (gain 0) was no saturated motor
@@ -294,23 +326,21 @@ class MotorBank:
         On a re-solve a stiff servo that exceeded the bound gets the gain of a stuck joint, τmax / |u - q̇|,
         whose torque stays within the bound while the joint moves toward its target; a joint that exceeded
         it even so (a load drove it away from its target) is held at the bound with a constant torque,
-        which is ODE's saturated motor. A stop row that pulled is released. ``applied`` is the motor's torque,
-        ``stop_torque`` the stop row's. With ``final`` the step is kept whatever the outcome and False is
-        returned.
+        which is ODE's saturated motor, as is a low-gain servo whose joint was driven past its target (braking).
+        A stop row that pulled is released, unless it was held again after a release in this step.
+        ``applied`` is the motor's torque, ``stop_torque`` the stop row's. With ``final`` the step is kept and
+        False is returned, after solving it again from its start if a motor ran away in it (module docstring).
         """
         if self.target.size == 0:
             return False
-        velocity = data.qvel[self.dof]
-        torque = self.gain * (self.setpoint - velocity) + self.bias
-        self.applied = torque
-        at_stop = self._at_stop
-        if self._any_stop:   # at a stop the servo is the stop row; the motor is the constant torque
-            self.applied = np.where(at_stop, self.bias, torque)
-            self.stop_torque = torque - self.applied
-        elif self.stop_torque is not self._no_bias:
-            self.stop_torque = self._no_bias
+        velocity, torque = self._record(data)
         if final:
+            for _ in range(RUNAWAY_RE_SOLVES):
+                if not self._stop_runaways(model, data, velocity):
+                    break
+                velocity, torque = self._record(data)
             return False
+        at_stop = self._at_stop
         limit = self.max_torque
         kv = self.params.motor_kv
         released = False
@@ -320,8 +350,11 @@ class MotorBank:
             pulling = at_stop & (self.gain > 0.0) & (self.stop_side * self.stop_torque > _STOP_PULL_TOLERANCE_NM)
             # and a released one whose joint then went into the stop faster than the row allows holds again
             pushing = at_stop & (self.gain == 0.0) & (self.stop_side * (velocity - self.setpoint) > 0.0)
+            # for the rest of the step (released and held in turn, some never settle)
+            pulling &= ~self._pinned
             if np.count_nonzero(pulling) or np.count_nonzero(pushing):
                 self.gain = np.where(pulling, 0.0, np.where(pushing, kv, self.gain))
+                self._pinned = self._pinned | pushing
                 released = True
         # A motor held at its bound that drove its joint past the target velocity was not saturated: ODE's
         # motor would have braked there. It becomes a stiff servo again (measured against the real server:
@@ -340,6 +373,18 @@ class MotorBank:
             self.bias = np.where(overshot, 0.0, self.bias)
             self._write(model, data)
             return True
+        # A servo on a lowered gain whose joint was driven past its target brakes with g |q̇ - u| only, where
+        # ODE's motor brakes with up to its bound: held there, braking.
+        low = (self.gain < kv) & (self.gain > 0.0) & (self.bias == 0.0) & ~self._reset
+        driven = low & ((velocity - self.target) * (self.target - self.start_velocity) > 0.0) \
+            & (np.abs(velocity - self.target) > RUNAWAY_RAD_S)
+        if self._any_stop:
+            driven &= ~at_stop
+        if np.count_nonzero(driven):
+            self.gain = np.where(driven, 0.0, self.gain)
+            self.bias = np.where(driven, np.sign(self.target - velocity) * limit, self.bias)
+            self._write(model, data)
+            return True
         over = np.abs(torque) > self._check_limit
         if self._any_stop:   # a joint at a stop has a constant motor torque; the stop row has no bound
             over &= ~at_stop
@@ -355,4 +400,44 @@ class MotorBank:
         self.gain = np.where(over & stiff, stuck, np.where(hold, 0.0, self.gain))
         self.bias = np.where(hold, np.sign(torque) * limit, self.bias)
         self._write(model, data)
+        return True
+
+    def _record(self, data: mujoco.MjData) -> tuple[np.ndarray, np.ndarray]:
+        """Motor and stop-row torques of the solve just done; returns the joint velocities and servo torques."""
+        velocity = data.qvel[self.dof]
+        torque = self.gain * (self.setpoint - velocity) + self.bias
+        self.applied = torque
+        if self._any_stop:   # at a stop the servo is the stop row; the motor is the constant torque
+            self.applied = np.where(self._at_stop, self.bias, torque)
+            self.stop_torque = torque - self.applied
+        elif self.stop_torque is not self._no_bias:
+            self.stop_torque = self._no_bias
+        return velocity, torque
+
+    def _stop_runaways(self, model: mujoco.MjModel, data: mujoco.MjData, velocity: np.ndarray) -> bool:
+        """The step's last solve (``velocity`` its joint velocities) is kept unchecked, and in a flailing robot
+        it may be the first with its set of held motors and released stop rows. If a held motor or low-gain
+        servo drove its joint more than `RUNAWAY_RAD_S` past its target velocity, or a released stop row let
+        its joint into the stop that much faster than the row allows, solve the step again from its start
+        with those motors stiff and those rows held. Returns whether it did (``re_solves`` counts it)."""
+        if self._step_start is None:
+            return False
+        kv = self.params.motor_kv
+        beyond = (velocity - self.target) * np.where(self.bias != 0.0, self.bias, self.target - self.start_velocity)
+        runaway = (self.gain < kv) & (beyond > 0.0) & (np.abs(velocity - self.target) > RUNAWAY_RAD_S)
+        if self._any_stop:
+            runaway &= ~self._at_stop
+            runaway |= self._at_stop & (self.gain == 0.0) \
+                & (self.stop_side * (velocity - self.setpoint) > RUNAWAY_RAD_S)   # a released row: held again
+        if not np.count_nonzero(runaway):
+            return False
+        self.gain = np.where(runaway, kv, self.gain)
+        self.bias = np.where(runaway & ~self._at_stop, 0.0, self.bias)   # at a stop the bias is the motor's
+        self._write(model, data)
+        qpos, qvel, warmstart, time_s = self._step_start
+        data.qpos[:], data.qvel[:], data.qacc_warmstart[:] = qpos, qvel, warmstart
+        data.time = time_s
+        mujoco.mj_step(model, data)
+        self.re_solves += 1
+        self.steps += 1
         return True
