@@ -60,7 +60,11 @@ sessions), benchmarks/bench_sim.py.
   0.25, the kick dry run's ball 1.32 -> closer to the real 0.84 m), 0.807 with no-slip 10. Neither is the
   default yet: each breaks skills tuned on these defaults (9 tests: the kick toward a ball 30° off flies
   0.64 m, a back stand-up at 30°, the full-lean walk curve, three of the real-walk replays' bounds), so
-  the shipped motions must be retuned on the calibrated world before it replaces this one.
+  the shipped motions must be retuned on the calibrated world before it replaces this one. The most physical
+  candidate so far is ``sim/physics_candidates/ode_friction.toml`` (no-slip post-solve for the robot, a ball
+  that cannot slip on foot or ground): the real kick's jam and the stand-ups that stay down are reproduced
+  (objective 1.496 -> 0.960 with the kick and 20 m walk fixtures and the ball roll); its header lists what it
+  breaks.
 * **Drag on robots.** SimSpark applies F = -0.01 v and τ = -0.01 ω to every body. Here the whole-body part
   is free-joint damping of the torso (N_bodies x 0.01 on the linear and angular dofs), exact for a rigid
   translation; the drag of limbs swinging relative to the torso is left out (at most 0.06 N·m at full

@@ -119,3 +119,17 @@ def test_ball_roll_is_compared_with_the_real_figure() -> None:
     assert all(abs(m.ours - 0.677) < 0.06 for m in faithful)      # measured 0.68-0.71 m per m/s
     draggy = ball_roll_measures(default_physics_params(ball_linear_drag_n_s_m=0.05))
     assert all(m.ours < 0.5 and m.error == 5.0 for m in draggy)   # five times the drag: rolls far shorter
+
+
+def test_the_ode_friction_candidate_jams_the_real_kick_as_the_real_server_does() -> None:
+    # The real kick's commands: the real ball went 1.45 m, popping up to 8 cm (it jams between foot and ground).
+    from sim.physics_params import load_physics_file
+
+    candidate = Path(__file__).parents[2] / "sim" / "physics_candidates" / "ode_friction.toml"
+    params = default_physics_params(**load_physics_file(candidate))
+    kick = load_trace(FIXTURES / "real_0.7.3_skill_kick.jsonl.gz")
+    travel = {m.name: m for m in measures(replay_trace(kick, params))}["ball_travel_m"]
+    assert 1.0 < travel.real < 2.0
+    assert abs(travel.ours - travel.real) < 0.4 * travel.real         # measured 1.94 m (default world: 4.7 m)
+    default = {m.name: m for m in measures(replay_trace(kick))}["ball_travel_m"]
+    assert default.ours > 2 * travel.real                              # why the default is not faithful here
