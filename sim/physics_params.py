@@ -23,7 +23,8 @@ sessions), benchmarks/bench_sim.py.
   saturates every light joint at once and overshoots by ~100 rad/s in one step. The 10 N·m bound is kept
   by `sim.effectors.MotorBank`: lowered gains where the bound would be exceeded, a constant ±10 N·m where
   a load overpowers the motor, and a re-solve of the step when the guess was wrong (random ±6 rad/s
-  commands flailing a robot against its stops: 0.07 % of the motor torques over 10.5 N·m, the worst 17).
+  commands flailing a robot against its stops: 0.16 % of the motor torques over 10.5 N·m, the worst 28, since the stops hold under
+  runaway commands (f107c45); 0.07 % and 17 before).
 * **Joint stops = ODE's** (StopERP 0.8, Bounce 1, FudgeFactor 1e-5), also in `sim.effectors.MotorBank`;
   MuJoCo's limit rows are off. A joint driven into its stop bounces back inside a step later, as the
   real fall trace shows (a hip at 3 rad/s into its 100° stop: 100.24 / 96.81° alternating); MuJoCo's

@@ -132,7 +132,7 @@ def test_a_joint_driven_into_its_stop_bounces_and_takes_commands_between() -> No
 def test_motor_torque_stays_within_10_nm_off_the_stops() -> None:
     # Random commands flail a robot whose joints keep bouncing off their stops; the active set of saturated
     # motors is settled in a few solves, so a rare step keeps a motor somewhat over the bound (measured over
-    # 8 seeds: 0.05 % of the motor torques over 10.5 N·m, the worst 15.5; an unbounded servo reaches 70).
+    # 8 seeds after f107c45: 0.16 % of the motor torques over 10.5 N·m, the worst 28 (these two seeds 0.12-0.13 %); an unbounded servo reaches 70).
     torques = []
     for seed in (3, 4):
         world = standing()
