@@ -14,9 +14,17 @@ counts a stand within 3 s of the fall, detection included, so the motion must be
 every start, not on average). ``--timing-only`` tunes the durations and the crouch / rise keyframes and keeps
 the ground phases' angles.
 
+``--backend real`` judges the candidates on the real rcssserver3d 0.7.3 instead (one server per worker, each
+in its own loopback namespace; seeded scripted falls as lying starts, the robot reset between rollouts by
+trainer commands: ``motion_studio.realserver.standup_backend``); ``--backend both`` judges them on the real
+server and on ours from the same starts (loss: real + ``--sim-weight`` x ours). The real server's contacts
+stick (no Coulomb limit, REFERENCE §2.4): a stand-up that drags the feet or the lying torso across the ground,
+as ours allows, fails there.
+
 Run::
 
     python -m motion_studio.tune_standup standup_front --generations 60 --write
+    motion-studio tune standup standup_back --backend both --starts 8 --noise --workers 2
 
 The checkpoint (JSON: CMA-ES state, the best so far) is rewritten after each generation; running the same
 command again resumes from it. ``--write`` puts the best parameters into ``motions/params/standup.toml``
@@ -304,8 +312,12 @@ def _evaluate_packed(packed: tuple[str, StandUpParams, dict, tuple[Start, ...], 
 def tune(section: str, base: StandUpParams, generations: int, starts: tuple[Start, ...], sigma: float = 0.1,
          popsize: int | None = None, workers: int = 1, checkpoint: Path | None = None, seed: int = 0,
          frozen: frozenset[str] = frozenset(), log=print, timing_only: bool = False, target_s: float = TARGET_S,
-         time_weight: float = TIME_WEIGHT) -> dict:
-    """CMA-ES over :func:`dimensions` around ``base``; returns the best {"loss", "values", "result"}."""
+         time_weight: float = TIME_WEIGHT, evaluator=None) -> dict:
+    """CMA-ES over :func:`dimensions` around ``base``; returns the best {"loss", "values", "result"}.
+
+    ``evaluator``: judges a generation at once (``evaluator.evaluate(list of StandUpParams)``, e.g. the real
+    server's ``motion_studio.realserver.standup_backend.RealEvaluator``); None = :func:`evaluate` on our
+    simulator from ``starts`` in ``workers`` processes."""
     dims = dimensions(base, frozen, timing_only)
     x0 = np.array([d.to_unit(get_value(base, d.name)) for d in dims])
     state = json.loads(checkpoint.read_text()) if checkpoint and checkpoint.is_file() else None
@@ -315,17 +327,20 @@ def tune(section: str, base: StandUpParams, generations: int, starts: tuple[Star
         log(f"resumed at generation {es.generation}, best loss {best['loss']:.3f}")
     else:
         es = CMAES.create(x0, sigma, popsize, seed)
-        first = evaluate(section, base, starts, target_s, time_weight)
+        first = evaluator.evaluate([base])[0] if evaluator else evaluate(section, base, starts, target_s, time_weight)
         best = {"loss": first["loss"], "values": {d.name: get_value(base, d.name) for d in dims}, "result": first}
         log(f"start loss {best['loss']:.3f} {first.get('times_s')}")
-    pool = ProcessPoolExecutor(workers) if workers > 1 else None
+    pool = ProcessPoolExecutor(workers) if workers > 1 and evaluator is None else None
     try:
         while es.generation < generations:
             started = time.perf_counter()
             candidates = es.ask()
             values = [{d.name: d.from_unit(u) for d, u in zip(dims, x)} for x in candidates]
-            packed = [(section, base, v, starts, target_s, time_weight) for v in values]
-            results = list(pool.map(_evaluate_packed, packed)) if pool else [_evaluate_packed(p) for p in packed]
+            if evaluator is not None:
+                results = evaluator.evaluate([with_values(base, v) for v in values])
+            else:
+                packed = [(section, base, v, starts, target_s, time_weight) for v in values]
+                results = list(pool.map(_evaluate_packed, packed)) if pool else [_evaluate_packed(p) for p in packed]
             losses = [float(r["loss"]) for r in results]
             es.tell(losses)
             i = int(np.argmin(losses))
@@ -381,26 +396,51 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--target-s", type=float, default=TARGET_S,
                         help="a start standing later than this from the motion's start costs --time-weight per s")
     parser.add_argument("--time-weight", type=float, default=TIME_WEIGHT, help="loss per second past --target-s")
+    parser.add_argument("--backend", choices=("mujoco", "real", "both"), default="mujoco",
+                        help="where candidates are judged: our simulator in-process (default), the real "
+                             "rcssserver3d (one server per worker, each in its own loopback namespace), or both "
+                             "from the same lying starts (loss: real + --sim-weight x ours)")
+    parser.add_argument("--sim-weight", type=float, default=1.0, help="weight of our simulator's loss (--backend both)")
+    parser.add_argument("--sim-starts", type=int, default=None,
+                        help="how many of the starts our simulator plays (--backend both; default all)")
+    parser.add_argument("--params", type=Path, default=PARAMS_PATH,
+                        help="parameter file to start from and to --write into (default the shipped one; the motion "
+                             "files are regenerated only for the shipped one)")
     parser.add_argument("--write", action="store_true", help="write the best parameters and regenerate the files")
     args = parser.parse_args(argv)
-    base = load_standup_params()[args.section]
-    checkpoint = args.checkpoint or CHECKPOINT_DIR / f"{args.section}.json"
+    base = load_standup_params(args.params)[args.section]
+    suffix = "" if args.backend == "mujoco" else f"_{args.backend}"
+    checkpoint = args.checkpoint or CHECKPOINT_DIR / f"{args.section}{suffix}.json"
     starts = default_starts(args.starts, seed=args.starts_seed, noise=args.noise)
     frozen = frozenset(name for name in args.freeze.split(",") if name)
-    best = tune(args.section, base, args.generations, starts, args.sigma, args.popsize, args.workers, checkpoint,
-                args.seed, frozen, timing_only=args.timing_only, target_s=args.target_s, time_weight=args.time_weight)
+    evaluator = None
+    if args.backend != "mujoco":
+        from motion_studio.realserver.standup_backend import make_evaluator
+
+        evaluator = make_evaluator(args.section, args.backend, args.starts, args.starts_seed, args.noise, args.workers,
+                                   args.target_s, args.time_weight, args.sim_weight, args.sim_starts)
+    try:
+        best = tune(args.section, base, args.generations, starts, args.sigma, args.popsize, args.workers, checkpoint,
+                    args.seed, frozen, timing_only=args.timing_only, target_s=args.target_s,
+                    time_weight=args.time_weight, evaluator=evaluator)
+    finally:
+        if evaluator is not None:
+            evaluator.pool.close()
     print(json.dumps(best, indent=1))
     if args.write:
         params = with_values(base, best["values"])
         date = datetime.date.today().isoformat()
-        options = (f" --starts-seed {args.starts_seed}" * (args.starts_seed != 1) + " --noise" * args.noise
+        both = f" --sim-weight {args.sim_weight:g}" + f" --sim-starts {args.sim_starts}" * bool(args.sim_starts)
+        options = (f" --backend {args.backend}" * (args.backend != "mujoco") + both * (args.backend == "both")
+                   + f" --starts-seed {args.starts_seed}" * (args.starts_seed != 1) + " --noise" * args.noise
                    + " --timing-only" * args.timing_only
                    + (f" --target-s {args.target_s:g} --time-weight {args.time_weight:g}" if args.time_weight else ""))
         provenance = (f"tuned by python -m motion_studio.tune_standup {args.section} --starts {len(starts)}{options} "
                       f"--freeze '{args.freeze}' --sigma {args.sigma:g} (CMA-ES, {args.generations} generations) on {date}")
         times = best["result"].get("times_s")
-        write_best(args.section, params, provenance, f"loss {best['loss']:.3f}, time to stand per start {times} s")
-        for target in write_all():
+        write_best(args.section, params, provenance, f"loss {best['loss']:.3f}, time to stand per start {times} s",
+                   args.params)
+        for target in (write_all() if args.params == PARAMS_PATH else []):
             print(f"wrote {target}")
     return 0
 
