@@ -17,7 +17,7 @@ the ground phases' angles.
 ``--backend real`` judges the candidates on the real rcssserver3d 0.7.3 instead (one server per worker, each
 in its own loopback namespace; seeded scripted falls as lying starts, the robot reset between rollouts by
 trainer commands: ``motion_studio.realserver.standup_backend``); ``--backend both`` judges them on the real
-server and on ours from the same starts (loss: real + ``--sim-weight`` x ours). The real server's contacts
+server and on ours (its own lay-down starts, ``--sim-starts``; loss: real + ``--sim-weight`` x ours). The real server's contacts
 stick (no Coulomb limit, REFERENCE §2.4): a stand-up that drags the feet or the lying torso across the ground,
 as ours allows, fails there.
 
@@ -398,11 +398,12 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--time-weight", type=float, default=TIME_WEIGHT, help="loss per second past --target-s")
     parser.add_argument("--backend", choices=("mujoco", "real", "both"), default="mujoco",
                         help="where candidates are judged: our simulator in-process (default), the real "
-                             "rcssserver3d (one server per worker, each in its own loopback namespace), or both "
-                             "from the same lying starts (loss: real + --sim-weight x ours)")
+                             "rcssserver3d (one server per worker, each in its own loopback namespace, scripted "
+                             "falls as starts), or both (loss: real + --sim-weight x ours from --sim-starts)")
     parser.add_argument("--sim-weight", type=float, default=1.0, help="weight of our simulator's loss (--backend both)")
-    parser.add_argument("--sim-starts", type=int, default=None,
-                        help="how many of the starts our simulator plays (--backend both; default all)")
+    parser.add_argument("--sim-starts", type=int, default=4,
+                        help="lying starts on our simulator (--backend both: the MuJoCo tuner's own, --starts-seed, "
+                             "--noise)")
     parser.add_argument("--params", type=Path, default=PARAMS_PATH,
                         help="parameter file to start from and to --write into (default the shipped one; the motion "
                              "files are regenerated only for the shipped one)")
@@ -417,20 +418,21 @@ def main(argv: list[str] | None = None) -> int:
     if args.backend != "mujoco":
         from motion_studio.realserver.standup_backend import make_evaluator
 
+        ours = default_starts(args.sim_starts, seed=args.starts_seed, noise=args.noise) if args.sim_starts else ()
         evaluator = make_evaluator(args.section, args.backend, args.starts, args.starts_seed, args.noise, args.workers,
-                                   args.target_s, args.time_weight, args.sim_weight, args.sim_starts)
+                                   args.target_s, args.time_weight, args.sim_weight, ours)
     try:
         best = tune(args.section, base, args.generations, starts, args.sigma, args.popsize, args.workers, checkpoint,
                     args.seed, frozen, timing_only=args.timing_only, target_s=args.target_s,
                     time_weight=args.time_weight, evaluator=evaluator)
     finally:
         if evaluator is not None:
-            evaluator.pool.close()
+            evaluator.close()
     print(json.dumps(best, indent=1))
     if args.write:
         params = with_values(base, best["values"])
         date = datetime.date.today().isoformat()
-        both = f" --sim-weight {args.sim_weight:g}" + f" --sim-starts {args.sim_starts}" * bool(args.sim_starts)
+        both = f" --sim-weight {args.sim_weight:g} --sim-starts {args.sim_starts}"
         options = (f" --backend {args.backend}" * (args.backend != "mujoco") + both * (args.backend == "both")
                    + f" --starts-seed {args.starts_seed}" * (args.starts_seed != 1) + " --noise" * args.noise
                    + " --timing-only" * args.timing_only

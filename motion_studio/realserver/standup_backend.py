@@ -1,16 +1,20 @@
 """The stand-up tuner's rollout backend on the real rcssserver3d (``motion-studio tune standup --backend real``),
-optionally judged on our simulator too from the same lying starts (``--backend both``).
+optionally judged on our simulator as well (``--backend both``).
 
-Each candidate (``StandUpParams``) is built into its motion once per start (with the start's parameter noise,
-as on the MuJoCo backend), and every (candidate, start) rollout of a generation goes to the worker pool at
-once (``standup_pool.RolloutPool``: one real server per worker, each in its own loopback namespace, reset
-between rollouts by trainer commands). A rollout's loss is ``motion_studio.tune_standup.Rollout.loss`` of its
-figures (time to stand from the motion's start, else how far from standing it stayed); a candidate's loss is
-the mean over the starts, summed over the worlds (``both``: real + ``sim_weight`` x ours).
+Each candidate (``StandUpParams``) is built into its motion once per real start (with the start's parameter
+noise, as on the MuJoCo backend), and every (candidate, start) rollout of a generation goes to the worker pool
+at once (``standup_pool.RolloutPool``: one real server per worker, each in its own loopback namespace, reset
+between rollouts by trainer commands). With ``both``, our simulator judges the candidates meanwhile, in other
+processes, from the MuJoCo tuner's own lying starts (``tune_standup.default_starts``: laid down from the walk
+stance or a seeded pose near it, yawed, twisted and nudged, as the stand-up benchmark and the scenario tests
+lay the robot down). A real rollout's loss is ``tune_standup.Rollout.loss`` of its figures (time to stand from
+the motion's start, else how far from standing it stayed); a candidate's loss is the mean over the real
+starts plus ``sim_weight`` x its MuJoCo loss (``tune_standup.evaluate``).
 """
 
 from __future__ import annotations
 
+from concurrent.futures import Executor, ProcessPoolExecutor
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -19,8 +23,8 @@ from motion_studio.realserver.rollout_standup import RealStart, StandUpOutcome, 
 from motion_studio.realserver.standup_pool import RolloutPool, RolloutRequest
 from motions.authoring.standup import STANDUPS, StandUpParams, build_standup, stance_params
 
-#: Backends of the stand-up tuner besides the default in-process MuJoCo one: worlds judged.
-WORLDS = {"real": ("real",), "both": ("real", "sim")}
+#: Backends of the stand-up tuner besides the default in-process MuJoCo one.
+BACKENDS = ("real", "both")
 
 
 def rollout_loss(outcome: StandUpOutcome | None, target_s: float, time_weight: float) -> float:
@@ -33,28 +37,34 @@ def rollout_loss(outcome: StandUpOutcome | None, target_s: float, time_weight: f
                    outcome.self_collisions, 0, outcome.best_feet_load, target_s, time_weight).loss
 
 
+def _mujoco_loss(packed: tuple) -> dict[str, object]:
+    from motion_studio.tune_standup import evaluate
+
+    return evaluate(*packed)
+
+
 @dataclass
 class RealEvaluator:
-    """Judges candidates of one stand-up on the real server (and ours).
+    """Judges candidates of one stand-up on the real server (and on ours).
 
     Args:
         section: ``standup_back`` or ``standup_front``.
-        starts: the lying starts (``real_starts``); a start's ``noise_seed`` puts noise on the candidate.
+        starts: the real lying starts (``real_starts``); a start's ``noise_seed`` puts noise on the candidate.
         pool: the worker pool.
-        worlds: ("real",) or ("real", "sim").
         target_s, time_weight: the late-stand term of the loss (``tune_standup.Rollout``).
-        sim_weight: weight of our simulator's mean loss when both are judged.
-        sim_starts: how many of the starts our simulator plays (None: all).
+        mujoco_starts: ``tune_standup.Start``s judged on our simulator too (empty: the real server alone).
+        sim_weight: weight of our simulator's loss.
+        executor: where the MuJoCo rollouts run (default: the caller's process, after the real batch).
     """
 
     section: str
     starts: tuple[RealStart, ...]
     pool: RolloutPool
-    worlds: tuple[str, ...] = ("real",)
     target_s: float = 6.0
     time_weight: float = 0.0
+    mujoco_starts: tuple = ()
     sim_weight: float = 1.0
-    sim_starts: int | None = None
+    executor: Executor | None = None
     stance: object = field(default_factory=stance_params)
 
     def evaluate(self, candidates: list[StandUpParams]) -> list[dict[str, object]]:
@@ -62,25 +72,27 @@ class RealEvaluator:
         from motion_studio.tune_standup import FAIL_LOSS, noisy
 
         side = STANDUPS[self.section]
+        # ours first, in other processes, so that it runs while the real server works
+        packed = [(self.section, params, self.mujoco_starts, self.target_s, self.time_weight) for params in candidates]
+        pending = ([self.executor.submit(_mujoco_loss, p) for p in packed]
+                   if self.mujoco_starts and self.executor is not None else [])
         requests: list[RolloutRequest] = []
-        owners: list[tuple[int, str]] = []
+        owners: list[int] = []
         errors: dict[int, str] = {}
         for index, params in enumerate(candidates):
-            motions = []
             try:
-                for start in self.starts:
-                    candidate = params if start.noise_seed is None else noisy(params, start.noise_seed)
-                    motions.append(build_standup(self.section, candidate, side, self.stance))
+                motions = [build_standup(self.section, params if start.noise_seed is None else
+                                         noisy(params, start.noise_seed), side, self.stance) for start in self.starts]
             except ValueError as error:
                 errors[index] = str(error)
                 continue
-            for world in self.worlds:
-                count = self.sim_starts if world == "sim" and self.sim_starts is not None else len(self.starts)
-                for start, motion in list(zip(self.starts, motions))[:count]:
-                    requests.append(RolloutRequest({self.section: motion}, self.section, start, world=world))
-                    owners.append((index, world))
+            requests += [RolloutRequest({self.section: motion}, self.section, start)
+                         for start, motion in zip(self.starts, motions)]
+            owners += [index] * len(motions)
         outcomes = self.pool.run(requests)
-        per: dict[tuple[int, str], list[StandUpOutcome | None]] = {}
+        ours = ([future.result() for future in pending] if pending else
+                [_mujoco_loss(p) for p in packed] if self.mujoco_starts else [])
+        per: dict[int, list[StandUpOutcome | None]] = {}
         for owner, outcome in zip(owners, outcomes):
             per.setdefault(owner, []).append(outcome)
         results = []
@@ -88,26 +100,31 @@ class RealEvaluator:
             if index in errors:
                 results.append({"loss": 2 * FAIL_LOSS + 6.0, "error": errors[index]})
                 continue
-            result: dict[str, object] = {"loss": 0.0}
-            for world in self.worlds:
-                runs = per[(index, world)]
-                losses = [rollout_loss(run, self.target_s, self.time_weight) for run in runs]
-                weight = self.sim_weight if world == "sim" else 1.0
-                result["loss"] = float(result["loss"]) + weight * float(np.mean(losses))
-                result[world] = {"losses": [round(v, 3) for v in losses],
-                                 "times_s": [run.time_s if run else None for run in runs],
-                                 "self_collisions": [run.self_collisions if run else None for run in runs]}
-            result["times_s"] = result["real"]["times_s"]
+            runs = per[index]
+            losses = [rollout_loss(run, self.target_s, self.time_weight) for run in runs]
+            result: dict[str, object] = {
+                "loss": float(np.mean(losses)), "times_s": [run.time_s if run else None for run in runs],
+                "real": {"losses": [round(v, 3) for v in losses],
+                         "self_collisions": [run.self_collisions if run else None for run in runs]}}
+            if ours:
+                result["loss"] = float(result["loss"]) + self.sim_weight * float(ours[index]["loss"])
+                result["mujoco"] = ours[index]
             results.append(result)
         return results
+
+    def close(self) -> None:
+        self.pool.close()
+        if self.executor is not None:
+            self.executor.shutdown()
 
 
 def make_evaluator(section: str, backend: str, count: int, seed: int, noise: bool, workers: int,
                    target_s: float, time_weight: float, sim_weight: float = 1.0,
-                   sim_starts: int | None = None) -> RealEvaluator:
-    """The evaluator of ``backend`` ("real" or "both") with ``count`` starts on the section's side."""
-    if backend not in WORLDS:
-        raise ValueError(f"unknown backend {backend!r}; known: mujoco, {', '.join(WORLDS)}")
-    pool = RolloutPool(workers)
-    return RealEvaluator(section, real_starts(STANDUPS[section], count, seed, noise), pool, WORLDS[backend],
-                         target_s, time_weight, sim_weight, sim_starts)
+                   mujoco_starts: tuple = ()) -> RealEvaluator:
+    """The evaluator of ``backend`` ("real", or "both" with ``mujoco_starts``) with ``count`` real starts on the
+    section's side and ``workers`` real servers (and as many MuJoCo processes)."""
+    if backend not in BACKENDS:
+        raise ValueError(f"unknown backend {backend!r}; known: mujoco, {', '.join(BACKENDS)}")
+    ours = tuple(mujoco_starts) if backend == "both" else ()
+    return RealEvaluator(section, real_starts(STANDUPS[section], count, seed, noise), RolloutPool(workers),
+                         target_s, time_weight, ours, sim_weight, ProcessPoolExecutor(workers) if ours else None)

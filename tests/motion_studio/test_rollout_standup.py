@@ -101,27 +101,30 @@ def test_the_worker_answers_json_lines():
 
 
 class _StandInPool:
-    """Answers every rollout at once: real ones never stand, ours stand in 2 s."""
+    """Answers every real rollout at once: none stands; the robot got 0.3 of its weight onto its feet."""
 
     def __init__(self) -> None:
         self.requests: list[RolloutRequest] = []
 
     def run(self, requests):
         self.requests += requests
-        return [StandUpOutcome(None if r.world == "real" else 2.0, 0.2, 0.5, 0.0, 0, 0.3, 0.0, 1.0)
-                for r in requests]
+        return [StandUpOutcome(None, 0.2, 0.5, 0.0, 0, 0.3, 0.0, 1.0) for _ in requests]
 
 
-def test_the_evaluator_sums_the_worlds_and_sends_one_batch_per_generation():
+def test_the_evaluator_sends_one_batch_per_generation_and_adds_our_simulator():
+    from motion_studio.tune_standup import Start, evaluate
+
     pool = _StandInPool()
     params = load_standup_params()["standup_back"]
     starts = real_starts("back", 3, noise=True)
-    evaluator = RealEvaluator("standup_back", starts, pool, ("real", "sim"), sim_weight=0.5)
+    ours = (Start(None, 30.0, (0.0, 0.0, 0.0), (0.0, 0.0, 0.0)),)
+    evaluator = RealEvaluator("standup_back", starts, pool, mujoco_starts=ours, sim_weight=0.5)
     results = evaluator.evaluate([params, params])
-    assert len(pool.requests) == 2 * 3 * 2
+    assert len(pool.requests) == 2 * 3 and all(r.world == "real" for r in pool.requests)
     real_loss = rollout_loss(pool.run(pool.requests[:1])[0], 6.0, 0.0)
-    assert results[0]["loss"] == pytest.approx(real_loss + 0.5 * 2.0)
-    assert results[0]["real"]["times_s"] == [None] * 3 and results[0]["sim"]["times_s"] == [2.0] * 3
+    mujoco = evaluate("standup_back", params, ours)
+    assert results[0]["loss"] == pytest.approx(real_loss + 0.5 * mujoco["loss"])
+    assert results[0]["times_s"] == [None] * 3 and results[0]["mujoco"]["times_s"] == mujoco["times_s"]
     # noisy starts play different motions
     assert len({dumps_xml(r.motions["standup_back"]) for r in pool.requests[:3]}) == 3
 
