@@ -37,7 +37,7 @@ def measure_kicks(library: MotionLibrary, motions: Sequence[str], offsets_m: Seq
             for server, rollout in servers.items():
                 figures = rollout(library, motion, Placement(offset)).figures()
                 rows.append({"motion": motion, "offset_m": offset, "server": server, **figures})
-                report(f"{motion} {offset * 100:+.0f} cm {server}: {figures['distance_m']:.2f} m, "
+                report(f"{motion} {offset * 100:+.1f} cm {server}: {figures['distance_m']:.2f} m, "
                        f"{figures['direction_error_deg']:+.1f} deg{', fell' if figures['fell'] else ''}")
     return rows
 
@@ -66,7 +66,7 @@ def table(rows: Sequence[dict]) -> str:
     lines = [f"{'motion':18s} {'offset':>6s} {'server':6s} " + " ".join(f"{k:>19s}" for k in keys)]
     for row in rows:
         cells = " ".join(f"{_cell(row[k]):>19s}" for k in keys)
-        lines.append(f"{row['motion']:18s} {row['offset_m'] * 100:+5.0f}cm {row['server']:6s} {cells}")
+        lines.append(f"{row['motion']:18s} {row['offset_m'] * 100:+5.1f}cm {row['server']:6s} {cells}")
     for motion, servers in summary(rows).items():
         for server, figures in servers.items():
             lines.append(f"{motion} on {server}: mean {figures['mean_m']:.2f} m, min {figures['min_m']:.2f} m, "
