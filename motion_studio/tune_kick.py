@@ -24,8 +24,8 @@ generations. ``--direction-weight`` trades distance for a straighter kick.
 itself inside netns.sh, robot and ball put back by trainer commands between kicks, about 1 s a kick), one
 rollout at a time, from REAL_PLACEMENTS (its physics has no noise: a kick repeated from the same placement
 varies only with the robot's settled start, a few tenths of a millimetre). ``--backend both`` adds our
-simulator's loss on OURS_CHECK_PLACEMENTS (``--ours-weight``, distance credited up to ``--ours-cap-m``), so
-the kick keeps working here too::
+simulator's loss on OURS_CHECK_PLACEMENTS (or all PLACEMENTS with ``--ours-placements all``; ``--ours-weight``,
+distance credited up to ``--ours-cap-m``), so the kick keeps working here too::
 
     python -m motion_studio.tune_kick kick --backend both --generations 30 --sigma 0.1 --only ...
 
@@ -345,6 +345,9 @@ def main(argv: list[str] | None = None) -> None:
                              "(motion_studio.realserver.rollout_kick, one at a time, REAL_PLACEMENTS), or both "
                              "(the real loss plus --ours-weight x ours on OURS_CHECK_PLACEMENTS)")
     parser.add_argument("--ours-weight", type=float, default=0.5, help="weight of our simulator's loss (both)")
+    parser.add_argument("--ours-placements", choices=("check", "all"), default="check",
+                        help="our simulator's placements with --backend both: OURS_CHECK_PLACEMENTS (4) or all "
+                             "of PLACEMENTS (13, for robustness)")
     parser.add_argument("--ours-cap-m", type=float, default=4.0,
                         help="distance credited at most on our simulator (both) [m]: its ball rolls farther")
     parser.add_argument("--real-workdir", type=Path, default=Path("out/tune_kick_real"),
@@ -374,8 +377,8 @@ def main(argv: list[str] | None = None) -> None:
         with RealKickBench(args.real_workdir) as bench:
             backends = [Backend("real", bench.rollout, REAL_PLACEMENTS)]
             if args.backend == "both":
-                backends.append(Backend("mujoco", mujoco_rollout, OURS_CHECK_PLACEMENTS, args.ours_weight,
-                                        args.ours_cap_m))
+                ours = PLACEMENTS if args.ours_placements == "all" else OURS_CHECK_PLACEMENTS
+                backends.append(Backend("mujoco", mujoco_rollout, ours, args.ours_weight, args.ours_cap_m))
             data = tune(args.section, base, stance, dimensions, objective, args.generations, checkpoint, 1,
                         args.sigma, args.popsize, args.seed, backends=backends)
     else:
@@ -387,7 +390,7 @@ def main(argv: list[str] | None = None) -> None:
         measured = measured_note(best["result"]["runs"])
         where = {"mujoco": "our simulator", "real": "the real rcssserver3d 0.7.3",
                  "both": f"the real rcssserver3d 0.7.3 and our simulator (weight {args.ours_weight}, "
-                         f"cap {args.ours_cap_m} m)"}[args.backend]
+                         f"cap {args.ours_cap_m} m, placements {args.ours_placements})"}[args.backend]
         provenance = (f"CMA-ES on {where}, python -m motion_studio.tune_kick {args.section} --generations "
                       f"{args.generations} --sigma {args.sigma} --cap-m {args.cap_m} --time-weight {args.time_weight} "
                       f"--direction-weight {args.direction_weight}"
