@@ -141,7 +141,8 @@ def test_backends_add_their_weighted_losses_and_label_their_runs():
         tune_kick.Backend("mujoco", ours, tune_kick.OURS_CHECK_PLACEMENTS, weight=0.5, cap_m=4.0)])
     assert result["losses"] == {"real": -4.5, "mujoco": -6.0}  # -(mean + 0.5 min); ours capped at 4 m
     assert result["loss"] == pytest.approx(-4.5 - 0.5 * 6.0)
-    assert [r["backend"] for r in result["runs"]] == ["real"] * 5 + ["mujoco"] * 4
+    assert [r["backend"] for r in result["runs"]] == (["real"] * len(tune_kick.REAL_PLACEMENTS)
+                                                      + ["mujoco"] * len(tune_kick.OURS_CHECK_PLACEMENTS))
     assert [s[2] for s in seen] == list(tune_kick.REAL_PLACEMENTS + tune_kick.OURS_CHECK_PLACEMENTS)
     assert {s[1] for s in seen} == {"kick"}
     note = tune_kick.measured_note(result["runs"])
