@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import importlib
 import logging
+import sys
 
 import typer
 
@@ -37,6 +38,8 @@ def _register_commands() -> None:
 
 
 def main() -> None:
+    from motion_studio.cli_errors import run_app
+
     logging.basicConfig(level=logging.INFO, format="%(levelname)s %(name)s: %(message)s")
     _register_commands()
-    app()
+    sys.exit(run_app(app))

@@ -11,6 +11,7 @@ import numpy as np
 
 from kinematics.fk import NaoKinematics
 from kinematics.ik import PoseTarget, WholeBodyIK
+from kinematics.meshcat_server import visualizer
 from kinematics.meshcat_view import NaoPosePainter, add_ground, add_nao, frame_camera
 from kinematics.mjcf import write_robot_mjcf
 from kinematics.spec import ROBOT_TYPES, robot_spec
@@ -47,19 +48,19 @@ def crouch_keyframe(torso_height_m: float = 0.33) -> dict[str, float]:
 
 def write_preview(path: Path, angles_rad: dict[str, float]) -> Path:
     """Standalone meshcat HTML of the zero pose (ghost) and the IK crouch side by side."""
-    vis = meshcat.Visualizer()
-    add_ground(vis, 1.5)
-    frame_camera(vis)
-    painter = NaoPosePainter(0)
-    add_nao(vis, "zero_pose", 0, opacity=0.35)
-    zero = painter.body_poses()
-    for pose in zero.values():
-        pose[0, 3] -= 0.25
-    for body, pose in zero.items():
-        vis[f"zero_pose/{body}"].set_transform(pose)
-    add_nao(vis, "crouch", 0)
-    painter.paint(vis, "crouch", angles_rad)
-    path.write_text(vis.static_html())
+    with visualizer() as vis:  # the server child ends with the block
+        add_ground(vis, 1.5)
+        frame_camera(vis)
+        painter = NaoPosePainter(0)
+        add_nao(vis, "zero_pose", 0, opacity=0.35)
+        zero = painter.body_poses()
+        for pose in zero.values():
+            pose[0, 3] -= 0.25
+        for body, pose in zero.items():
+            vis[f"zero_pose/{body}"].set_transform(pose)
+        add_nao(vis, "crouch", 0)
+        painter.paint(vis, "crouch", angles_rad)
+        path.write_text(vis.static_html())
     return path
 
 

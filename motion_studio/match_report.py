@@ -9,6 +9,7 @@ from typing import Any
 from tqdm import tqdm
 
 from motion_studio.match_agents import make_agent
+from motion_studio.match_settings import MatchSettings, prepare_folder
 from sim.match import MatchConfig, run_match
 from sim.match_batch import append_result, batch_configs, finished_ids, read_results, run_batch
 from sim.ray_executor import RayExecutor
@@ -20,12 +21,12 @@ def run_and_report(*, players: int, duration_s: float, matches: int, workers: in
     """Play the matches (one with a live game-time bar, a batch with a per-match bar); return report lines.
 
     With ``ray_address`` the batch runs as Ray tasks (`sim.ray_executor`); the checkpoint stays here."""
-    out.mkdir(parents=True, exist_ok=True)
     checkpoint = out / "results.jsonl"
-    if not resume and checkpoint.exists():
-        checkpoint.unlink()
     base = MatchConfig(team_left=team_left, team_right=team_right, players_per_team=players, duration_s=duration_s,
                        seed=seed, log_path=str(out / "match.log.gz") if log else None, match_id="match")
+    # results are keyed by their settings: a resume with other settings is refused before anything is played
+    prepare_folder(out, MatchSettings(players, duration_s, team_left, team_right, log, base.robot_types,
+                                      base.kick_off_wait_s), resume)
     configs = batch_configs(base, matches, seed)
     if ray_address is not None:
         executor = RayExecutor(ray_address, num_cpus=workers if workers > 1 else None)

@@ -57,11 +57,10 @@ def write_animation(result: PreviewResult, robot_type: int, path: Path) -> Path:
     import meshcat
     import meshcat.animation
 
+    from kinematics.meshcat_server import visualizer
     from kinematics.meshcat_view import add_ground, add_nao, frame_camera
-    from sim.replay import _stop_meshcat
 
-    vis = meshcat.Visualizer()
-    try:
+    with visualizer() as vis:
         add_ground(vis, 3.0)
         add_nao(vis, "sim", robot_type)
         frame_camera(vis)
@@ -74,8 +73,6 @@ def write_animation(result: PreviewResult, robot_type: int, path: Path) -> Path:
         vis.set_animation(animation, play=False, repetitions=1)
         path.parent.mkdir(parents=True, exist_ok=True)
         path.write_text(vis.static_html())
-    finally:
-        _stop_meshcat(vis)
     return path
 
 

@@ -6,6 +6,7 @@ from pathlib import Path
 
 import meshcat
 
+from kinematics.meshcat_server import loopback_visualizer
 from kinematics.meshcat_view import NaoPosePainter, add_ground, add_nao, frame_camera
 from motion_studio.pose_input import parse_joint_assignments, read_pose_file
 
@@ -25,9 +26,12 @@ def preview_pose(robot_type: int, assignments: list[str], pose_file: Path | None
     """
     angles = read_pose_file(pose_file, robot_type) if pose_file else {}
     angles.update(parse_joint_assignments(assignments, robot_type))
-    vis = meshcat.Visualizer()  # starts meshcat's server bound to 127.0.0.1
+    vis = loopback_visualizer()  # meshcat's web and ZMQ ports on 127.0.0.1; the child ends with this process
     pose_scene(vis, robot_type, angles)
     if html is None:
         return vis.url()
-    html.write_text(vis.static_html())
+    try:
+        html.write_text(vis.static_html())
+    finally:
+        vis.close()
     return str(html)

@@ -16,6 +16,7 @@ from dataclasses import asdict, replace
 from pathlib import Path
 from typing import Any
 
+from kinematics.child_process import end_with_parent
 from sim.match import AgentFactory, MatchConfig, MatchResult, run_match
 
 logger = logging.getLogger(__name__)
@@ -109,7 +110,8 @@ def run_batch(configs: Iterable[MatchConfig], make_agent: AgentFactory, checkpoi
         for config in todo:
             record(run_one(config, make_agent))
     else:
-        pool = executor or ProcessPoolExecutor(max_workers=workers)
+        # workers end with this process even when it is killed (they would otherwise wait on the queue for ever)
+        pool = executor or ProcessPoolExecutor(max_workers=workers, initializer=end_with_parent)
         try:
             futures = [pool.submit(run_one, config, make_agent) for config in todo]
             for future in as_completed(futures):

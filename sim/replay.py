@@ -235,6 +235,7 @@ def replay_log(path: str | Path, html_out: str | Path | None = None, *, max_fram
     import meshcat
     import meshcat.animation
 
+    from kinematics.meshcat_server import loopback_visualizer
     from kinematics.meshcat_view import add_nao
 
     frames = list(read_log(path))
@@ -242,7 +243,7 @@ def replay_log(path: str | Path, html_out: str | Path | None = None, *, max_fram
         raise ValueError(f"{path}: no full-state line, nothing to replay")
     stride = max(1, math.ceil(len(frames) / max(1, max_frames)))
     frames = frames[::stride]
-    vis = meshcat.Visualizer()
+    vis = loopback_visualizer()  # 127.0.0.1 only, ends with this process
     _field(vis)
     import meshcat.geometry as g
     vis["ball"].set_object(g.Sphere(0.042), g.MeshLambertMaterial(color=0xFF8000))
@@ -287,14 +288,8 @@ def replay_log(path: str | Path, html_out: str | Path | None = None, *, max_fram
 
 
 def _stop_meshcat(vis) -> None:
-    """End the meshcat server process this visualizer started (meshcat 0.3.2 leaves it running)."""
-    process = getattr(vis.window, "server_proc", None)
-    if process is not None and process.poll() is None:
-        process.terminate()
-        try:
-            process.wait(timeout=5.0)
-        except Exception:
-            process.kill()
+    """End the meshcat server child of a ``loopback_visualizer``."""
+    vis.close()
 
 
 def _frame_period(frames: list[ReplayFrame]) -> float:

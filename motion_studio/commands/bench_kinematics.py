@@ -15,7 +15,7 @@ TARGETS = {"fk_us": 20.0, "ik_ms": 1.0, "max_com_diff_m": 1e-6, "max_frame_diff_
 @bench_app.command("kinematics")
 def bench_kinematics(
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object only")] = False,
-    poses: Annotated[int, typer.Option(help="random poses per robot type for the agreement check")] = 100,
+    poses: Annotated[int, typer.Option(min=1, max=100000, help="random poses per robot type for the agreement check")] = 100,
 ) -> None:
     """FK camera-height time, IK keyframe time, MuJoCo-Pinocchio disagreement (figures, not pass/fail)."""
     from kinematics.benchmark import run

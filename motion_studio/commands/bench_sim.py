@@ -12,8 +12,8 @@ from motion_studio.cli import bench_app
 
 @bench_app.command("sim")
 def bench_sim(
-    robots: Annotated[int, typer.Option(help="number of robots (agents), 1-22")] = 22,
-    cycles: Annotated[int, typer.Option(help="timed cycles (20 ms of simulated time each)")] = 500,
+    robots: Annotated[int, typer.Option(min=1, max=22, help="number of robots (agents), 1-22")] = 22,
+    cycles: Annotated[int, typer.Option(min=1, max=1_000_000, help="timed cycles (20 ms of simulated time each)")] = 500,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object only")] = False,
 ) -> None:
     """Time the simulator: every agent parses its sense message and sends 22 joint commands per cycle."""

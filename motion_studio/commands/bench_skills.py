@@ -68,7 +68,7 @@ def bench_skills(
     skill: Annotated[list[str] | None, typer.Option(
         "--skill", help=f"skill to benchmark (repeatable): {', '.join(SKILLS)}; default all")] = None,
     quick: Annotated[bool, typer.Option(help="reduced trials (a smoke run, figures less certain)")] = False,
-    seed: Annotated[int, typer.Option(help="random seed of the simulator and the trial variations")] = 0,
+    seed: Annotated[int, typer.Option(min=0, help="random seed of the simulator and the trial variations")] = 0,
     out: Annotated[Path, typer.Option(help="folder for the PNG plots and skills.json")] = Path("out/skills"),
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object only")] = False,
 ) -> None:

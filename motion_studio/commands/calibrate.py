@@ -22,7 +22,7 @@ def calibrate(
     generations: Annotated[int, typer.Option(min=0, max=500, help="CMA-ES generations (0: only report the "
                                                                   "agreement of the current parameters)")] = 0,
     popsize: Annotated[int, typer.Option(min=4, max=64, help="candidates per generation")] = 10,
-    seed: Annotated[int, typer.Option(help="seed of the optimiser")] = 0,
+    seed: Annotated[int, typer.Option(min=0, help="seed of the optimiser")] = 0,
     out: Annotated[Path, typer.Option(help="run folder: checkpoint, evaluations.jsonl, agreement.png")] =
         Path("out/calibrate"),
     write: Annotated[bool, typer.Option(help="write the fitted values into sim/physics_calibrated.toml")] = False,

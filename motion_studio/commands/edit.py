@@ -11,6 +11,7 @@ from typing import Annotated, Optional
 import typer
 
 from motion_studio.cli import app, bench_app
+from motion_studio.commands.options import RobotType
 
 #: Seconds within which a second Ctrl-C quits although tabs hold unsaved changes.
 CONFIRM_QUIT_S = 10.0
@@ -20,9 +21,9 @@ CONFIRM_QUIT_S = 10.0
 def edit(
     file: Annotated[Path, typer.Argument(help="motion file: XML phase (.xml) or Webots (.motion); created on the "
                                               "first save if it does not exist")],
-    port: Annotated[int, typer.Option(help="port on 127.0.0.1; 0 = a free one")] = 0,
+    port: Annotated[int, typer.Option(min=0, max=65535, help="port on 127.0.0.1; 0 = a free one")] = 0,
     no_browser: Annotated[bool, typer.Option("--no-browser", help="only print the URL")] = False,
-    robot_type: Annotated[int, typer.Option("--type", help="robot type 0-4")] = 0,
+    robot_type: RobotType = 0,
 ) -> None:
     """Edit a motion in the browser: keyframes, joint sliders, IK handles, playback, physics preview, save.
 
@@ -71,7 +72,7 @@ def bench_editor(
     motion: Annotated[Optional[Path], typer.Option(help="motion file to open (a copy is edited); default: a "
                                                         "built-in two-phase crouch")] = None,
     joint: Annotated[str, typer.Option(help="slider moved (wire name)")] = "llj3",
-    moves: Annotated[int, typer.Option(help="slider steps timed in the browser")] = 40,
+    moves: Annotated[int, typer.Option(min=1, max=10000, help="slider steps timed in the browser")] = 40,
     screenshot: Annotated[Optional[Path], typer.Option(help="save a PNG of the editor here")] = None,
     browser: Annotated[bool, typer.Option("--browser/--no-browser-part",
                                           help="also time slider -> 3D view in headless Chromium")] = True,

@@ -13,13 +13,13 @@ from motion_studio.cli import app
 
 @app.command()
 def match(
-    players: Annotated[int, typer.Option(help="players per team (1-11)")] = 3,
-    duration: Annotated[float, typer.Option(help="game time to play, s (600 = two halves)")] = 600.0,
-    matches: Annotated[int, typer.Option(help="number of matches (seeds seed..seed+N-1)")] = 1,
-    workers: Annotated[int, typer.Option(help="parallel processes for a batch")] = 1,
+    players: Annotated[int, typer.Option(min=1, max=11, help="players per team (1-11)")] = 3,
+    duration: Annotated[float, typer.Option(min=0.02, max=3600.0, help="game time to play, s (600 = two halves; 0.02-3600)")] = 600.0,
+    matches: Annotated[int, typer.Option(min=1, max=100000, help="number of matches (seeds seed..seed+N-1)")] = 1,
+    workers: Annotated[int, typer.Option(min=1, max=1024, help="parallel processes for a batch")] = 1,
     ray: Annotated[Optional[str], typer.Option(
         help="run the batch on Ray: 'auto' or HOST:PORT joins a cluster, 'local' starts Ray here")] = None,
-    seed: Annotated[int, typer.Option(help="first seed")] = 0,
+    seed: Annotated[int, typer.Option(min=0, help="first seed")] = 0,
     out: Annotated[Path, typer.Option(help="output folder: results.jsonl (checkpoint), logs, plot")] = Path("out/match"),
     log: Annotated[bool, typer.Option(help="write a SimSpark monitor log per match")] = True,
     team_left: Annotated[str, typer.Option()] = "Left",

@@ -9,13 +9,14 @@ from typing import Annotated, Optional
 import typer
 
 from motion_studio.cli import app
+from motion_studio.commands.options import RobotType
 
 
 @app.command()
 def play(
     motion_file: Annotated[Path, typer.Argument(help="XML phase (.xml) or Webots (.motion) file")],
-    robot_type: Annotated[int, typer.Option("--type", help="robot type 0-4")] = 0,
-    hold: Annotated[float, typer.Option(help="seconds recorded after the motion ends")] = 1.0,
+    robot_type: RobotType = 0,
+    hold: Annotated[float, typer.Option(min=0.0, max=600.0, help="seconds recorded after the motion ends")] = 1.0,
     plot: Annotated[Optional[Path], typer.Option(help="write a PNG of torso height and tilt here")] = None,
     html: Annotated[Optional[Path], typer.Option(help="write a standalone 3D animation (meshcat HTML) here")] = None,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object only")] = False,

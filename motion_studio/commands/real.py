@@ -88,8 +88,8 @@ def skills(
 
 @real_app.command("match")
 def match(
-    players: Annotated[int, typer.Option(help="players per team, 1-11")] = 3,
-    duration: Annotated[float, typer.Option(help="game time to play [s]")] = 120.0,
+    players: Annotated[int, typer.Option(min=1, max=11, help="players per team, 1-11")] = 3,
+    duration: Annotated[float, typer.Option(min=0.02, max=3600.0, help="game time to play [s]")] = 120.0,
     seed: Annotated[int, typer.Option(help="our simulator's seed")] = 0,
     code: Annotated[str, typer.Option(
         help="git revision whose agent, simulator and motions play (default HEAD; exported and run in a child "
@@ -102,7 +102,7 @@ def match(
     cli: Annotated[bool, typer.Option(
         help="real match with python -m agent processes (the command people use) instead of agents in this "
              "process; only the monitor's figures then")] = False,
-    connect_gap: Annotated[int, typer.Option(
+    connect_gap: Annotated[int, typer.Option(min=0, max=1000,
         help="cycles each agent plays before the next connects (in-process real match)")] = 3,
     only: Annotated[Optional[str], typer.Option(help="play one of the two matches only: real or ours")] = None,
     out: Annotated[Path, typer.Option(help="logs")] = Path("out/real_match_check"),
@@ -203,9 +203,9 @@ def _play(setup: MatchSetup, seed: int, label: str, kick_off: str, cli: bool, on
 def trace(
     scenario: Annotated[str, typer.Argument(help="stand, crouch or fall")],
     out: Annotated[Path, typer.Argument(help="the trace file (.jsonl, or .jsonl.gz for gzip)")],
-    cycles: Annotated[int, typer.Option(help="sense messages to record")] = 250,
+    cycles: Annotated[int, typer.Option(min=1, max=1_000_000, help="sense messages to record")] = 250,
     host: Annotated[str, typer.Option(help="the running server's address")] = "127.0.0.1",
-    port: Annotated[int, typer.Option(help="its agent port")] = 3100,
+    port: Annotated[int, typer.Option(min=1, max=65535, help="its agent port")] = 3100,
 ) -> None:
     """Record a scripted session against a running server (ours, or the real one started inside netns.sh:
     ``netns.sh bash -c 'server.sh & sleep 3; motion-studio real trace crouch out.jsonl.gz'``)."""

@@ -12,13 +12,13 @@ from motion_studio.cli import app
 
 @app.command()
 def serve(
-    port: Annotated[int, typer.Option(help="agent port")] = 3100,
+    port: Annotated[int, typer.Option(min=0, max=65535, help="agent port (0 = a free one)")] = 3100,
     sync: Annotated[bool, typer.Option("--sync/--realtime",
                                        help="sync: wait for every agent's (syn), as fast as they answer; "
                                             "realtime: 50 Hz wall clock, never wait")] = True,
-    seed: Annotated[Optional[int], typer.Option(help="random seed (noise, referee); default: random")] = None,
+    seed: Annotated[Optional[int], typer.Option(min=0, help="random seed (noise, referee); default: random")] = None,
     log: Annotated[Optional[Path], typer.Option(help="write a SimSpark monitor log here")] = None,
-    monitor_port: Annotated[int, typer.Option(help="monitor/trainer port; 0 = none")] = 3200,
+    monitor_port: Annotated[int, typer.Option(min=0, max=65535, help="monitor/trainer port; 0 = none")] = 3200,
     host: Annotated[str, typer.Option(help="bind address (loopback by default)")] = "127.0.0.1",
 ) -> None:
     """Serve a match: agents connect as to rcssserver3d; monitors (RoboViz) and trainers on the monitor port.

@@ -27,7 +27,7 @@ def _fail(message: str) -> None:
 
 @app.command()
 def transfer(
-    starts: Annotated[int, typer.Option(help="seeded lying starts per stand-up side (start 0 = the case as "
+    starts: Annotated[int, typer.Option(min=1, max=1000, help="seeded lying starts per stand-up side (start 0 = the case as "
                                               "shipped; the others vary the fall script and the settle time)")] = 10,
     seed: Annotated[int, typer.Option(help="seed of the lying start variations")] = 0,
     out: Annotated[Path, typer.Option(help="folder for transfer.json, the PNG plots and the servers' logs")] =
