@@ -177,14 +177,14 @@ def run_match(config: MatchConfig, make_agent: AgentFactory,
         agent_errors=host.stats.agent_errors + sum(g.errors for g in guards), final_play_mode=referee.play_mode)
 
 
-def _open_log(path: str | None, engine: SimEngine, step_cycles: int = 2) -> Any:
-    """A SimSpark monitor log of the match (every 2nd cycle, as the monitor feed), or None."""
+def _open_log(path: str | None, engine: SimEngine) -> Any:
+    """A SimSpark monitor log of the match (a line every 0.2 s as the server's logger, compact numbers), or None."""
     if path is None:
         return None
     from sim.monitor import MonitorLogWriter, MujocoWorldScene, snapshot_of
 
     scene = MujocoWorldScene(engine.world)
-    return MonitorLogWriter(Path(path), lambda: snapshot_of(scene, engine.referee), step_cycles)
+    return MonitorLogWriter(Path(path), lambda: snapshot_of(scene, engine.referee))
 
 
 def result_to_json(result: MatchResult) -> dict[str, Any]:

@@ -57,8 +57,37 @@ def number(value: float) -> str:
     return format_g6(round_float32(value))
 
 
-def matrix_text(matrix: Matrix) -> str:
-    return "(SLT " + " ".join(number(v) for v in matrix) + ")"
+def compact_number(value: float, decimals: int) -> str:
+    """A number rounded to ``decimals`` places with no trailing zeros and no ``-0`` (``0.995``, ``-3.1``, ``1``).
+
+    Log files use it for transforms: the server's six significant digits spend most of a line on float
+    noise (``-2.69199e-10``) that no viewer shows, and their last digits defeat compression.
+    """
+    text = f"{value:.{decimals}f}".rstrip("0").rstrip(".")
+    return "0" if text in ("-0", "") else text
+
+
+#: Places of the rotation and the translation numbers of a transform (None: the server's spelling).
+Decimals = tuple[int, int] | None
+
+
+def _spell(matrix: Matrix, decimals: tuple[int, int]) -> list[str]:
+    rotation, translation = decimals
+    return [compact_number(v, translation if 12 <= i <= 14 else rotation) for i, v in enumerate(matrix)]
+
+
+def quantize(matrix: Matrix, decimals: Decimals) -> Matrix:
+    """The values a reader gets back from `matrix_text` (float32 for the server's spelling)."""
+    if decimals is None:
+        return tuple(round_float32(v) for v in matrix)
+    return tuple(float(text) for text in _spell(matrix, decimals))
+
+
+def matrix_text(matrix: Matrix, decimals: Decimals = None) -> str:
+    """``(SLT m0 ... m15)``: the server's spelling, or `compact_number` with (rotation, translation) places."""
+    if decimals is None:
+        return "(SLT " + " ".join(number(v) for v in matrix) + ")"
+    return "(SLT " + " ".join(_spell(matrix, decimals)) + ")"
 
 
 @dataclass
@@ -207,9 +236,15 @@ class SceneWriter:
     """Writes a node tree as a full scene or as a diff against what this writer sent before.
 
     One writer per consumer (a log file, a monitor connection): the diff depends on what it has sent.
+
+    Args:
+        decimals: places of the rotation and the translation numbers of a transform (None: the server's
+            float32 ``%g``, byte for byte). What a reader holds after a diff is within ``TRANSFORM_PRECISION``
+            plus half a last place of the truth.
     """
 
-    def __init__(self) -> None:
+    def __init__(self, decimals: Decimals = None) -> None:
+        self.decimals = decimals
         self._sent: dict[str, Matrix] = {}
         self._first_diff = False
 
@@ -229,19 +264,25 @@ class SceneWriter:
         self._first_diff = False
         return "(" + "".join(out) + ")"
 
+    def _send(self, key: str, matrix: Matrix) -> str:
+        """The transform's text; remembers the values a reader gets from it (what later diffs compare with)."""
+        if self.decimals is None:
+            self._sent[key] = quantize(matrix, None)
+            return matrix_text(matrix)
+        spelled = _spell(matrix, self.decimals)
+        self._sent[key] = tuple(float(text) for text in spelled)
+        return "(SLT " + " ".join(spelled) + ")"
+
     def _write(self, node: Node, out: list[str], full: bool) -> None:
         if node.kind == "TRF":
             out.append("(nd TRF " if full else "(nd")
             assert node.matrix is not None
             if full:
-                out.append(matrix_text(node.matrix))
-                self._sent[node.key] = tuple(round_float32(v) for v in node.matrix)
+                out.append(self._send(node.key, node.matrix))
             else:
                 old = self._sent.get(node.key)
-                new = tuple(round_float32(v) for v in node.matrix)
-                if old is None or any(abs(a - b) > TRANSFORM_PRECISION for a, b in zip(old, new)):
-                    out.append(" " + matrix_text(node.matrix))
-                    self._sent[node.key] = new
+                if old is None or any(abs(a - b) > TRANSFORM_PRECISION for a, b in zip(old, node.matrix)):
+                    out.append(" " + self._send(node.key, node.matrix))
         elif node.kind == "Light":
             out.append("(nd Light" + node.body if full else "(nd")
         else:

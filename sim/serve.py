@@ -17,7 +17,8 @@ logger = logging.getLogger(__name__)
 class ServeOptions:
     """What `motion-studio serve` sets: bind address, ports (monitor None = none), modes, seed, log file.
 
-    log_step_cycles: cycles between log lines (2 = every monitor frame).
+    log_step_cycles: cycles between log lines (10 = 0.2 s, the server's ``$monitorLoggerStep`` and the frame
+    period RoboViz's log player assumes; 2 = every monitor frame, five times the size).
     """
 
     host: str = DEFAULT_HOST
@@ -27,7 +28,7 @@ class ServeOptions:
     real_time: bool = False
     seed: int | None = None
     log_path: str | None = None
-    log_step_cycles: int = 2
+    log_step_cycles: int = 10
     sync_timeout_s: float | None = None
 
 

@@ -43,7 +43,7 @@ def _write_log(path: Path, cycles: int = 60) -> None:
         snapshots.append(SceneSnapshot(game, translation(i * 0.05, 0.0, 0.042), robots))
     opener = gzip.open if path.suffix == ".gz" else open
     with opener(path, "wt") as out:
-        writer = MonitorLogWriter(out, lambda: snapshots[cycle])
+        writer = MonitorLogWriter(out, lambda: snapshots[cycle], step_cycles=2)
         for cycle in range(cycles + 1):
             writer.on_cycle(cycle)
 
