@@ -19,12 +19,21 @@ def soccer_agent(config: AgentConfig) -> Agent:
     return Agent(config, SoccerBehavior(config.robot_type))
 
 
+def baseline_agent(config: AgentConfig) -> Agent:
+    """The baseline opponent: nearest player kicks toward the goal, no coordination
+    (``agent.team.baseline``)."""
+    from agent.team.baseline import BaselineBehavior
+
+    return Agent(config, BaselineBehavior(config.robot_type))
+
+
 def idle_agent(config: AgentConfig) -> Agent:
     """An agent that connects, beams, localizes and talks, but sends no joint commands."""
     return Agent(config)
 
 
-BEHAVIORS: dict[str, Callable[[AgentConfig], Agent]] = {"soccer": soccer_agent, "idle": idle_agent}
+BEHAVIORS: dict[str, Callable[[AgentConfig], Agent]] = {"soccer": soccer_agent, "baseline": baseline_agent,
+                                                      "idle": idle_agent}
 DEFAULT_BEHAVIOR = "soccer"
 
 
@@ -40,4 +49,4 @@ def agent_factory(behavior: str) -> Callable[[AgentConfig], Agent]:
         raise ConfigError(f"unknown behavior {behavior!r}; known: {', '.join(BEHAVIORS)}", "behavior") from None
 
 
-__all__ = ["BEHAVIORS", "DEFAULT_BEHAVIOR", "agent_factory", "idle_agent", "soccer_agent"]
+__all__ = ["BEHAVIORS", "DEFAULT_BEHAVIOR", "agent_factory", "baseline_agent", "idle_agent", "soccer_agent"]

@@ -1,0 +1,88 @@
+"""Own set pieces under the rules' one-touch limit (REFERENCE §4.4): who took the last one, and the kick-off
+kick played at once.
+
+Why: the taker of a kick-off, kick-in, corner, goal kick or free kick may not touch the ball again before
+another player did ("double touch": an indirect free kick for the opponents). Dribbling from a set piece did
+exactly that on our simulator (kick-off, then free_kick_right 0.3 s later). So the taker plays one kick and
+then stays out of the on-ball choice until someone else was at the ball (or ``TAKER_WAIT_S`` passed); every
+player keeps the same memory from the same beliefs, so the team agrees on it without a message.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from agent.team.roles import Candidate
+from agent.world_model import WorldModel
+
+#: The set-piece taker stays out of the on-ball choice at most this long after its set piece ended [s].
+TAKER_WAIT_S = 8.0
+#: Another player this near the ball (torso centre) counts as having touched it [m].
+TOUCH_NEAR_M = 0.3
+#: Play modes of set pieces (the suffix names the team taking it).
+SET_PIECE_PREFIXES = ("KickOff_", "KickIn_", "corner_kick_", "goal_kick_", "free_kick_", "direct_free_kick_",
+                      "pass_")
+
+
+def own_set_piece(play_mode: str, side: str | None) -> bool | None:
+    """True for the own team's set piece, False for the opponents', None when no set piece."""
+    for prefix in SET_PIECE_PREFIXES:
+        if play_mode.startswith(prefix):
+            taker = play_mode[len(prefix):].lower()
+            return side is not None and taker == side
+    return None
+
+
+@dataclass
+class TakerMemory:
+    """Who took the own team's last set piece and whether it must still keep off the ball."""
+
+    taker: int | None = None
+    """The unum that held the ball during the last own set piece."""
+    since_s: float | None = None
+    """Server time the set piece ended (None while it runs or without one)."""
+    _holder_in_set_piece: int | None = None
+
+    def update(self, world: WorldModel, own: bool | None, holder: int | None) -> None:
+        """Called every cycle with this cycle's set-piece state and the on-ball choice."""
+        if own is True:
+            self._holder_in_set_piece = holder
+            self.taker, self.since_s = None, None
+            return
+        if own is None and self._holder_in_set_piece is not None:
+            self.taker, self.since_s = self._holder_in_set_piece, world.now_s
+            self._holder_in_set_piece = None
+        elif own is False:
+            self._holder_in_set_piece = None
+            self.taker, self.since_s = None, None
+
+    def excluded(self, world: WorldModel, ball: tuple[float, float], players: list[Candidate]) -> int | None:
+        """The unum that must not play the ball now (None when everyone may)."""
+        if self.taker is None or self.since_s is None:
+            return None
+        if world.now_s - self.since_s > TAKER_WAIT_S or _someone_else_at(world, ball, players, self.taker):
+            self.taker, self.since_s = None, None
+            return None
+        return self.taker
+
+
+def _someone_else_at(world: WorldModel, ball: tuple[float, float], players: list[Candidate], taker: int) -> bool:
+    """A teammate other than the taker, or an opponent, is believed at the ball."""
+    for player in players:
+        if player.unum != taker and math.hypot(player.x_m - ball[0], player.y_m - ball[1]) <= TOUCH_NEAR_M:
+            return True
+    for opponent in world.opponents.values():
+        if opponent.position is not None and opponent.age_s(world.now_s) <= 1.0 and \
+                math.hypot(opponent.position[0] - ball[0], opponent.position[1] - ball[1]) <= TOUCH_NEAR_M:
+            return True
+    return False
+
+
+def kick_window(ball_ego: tuple[float, float], spot_forward_m: float, spot_left_m: float) -> bool:
+    """The ball lies where the kick motion hits it (loose window of ``KickConfig``): play the kick as is."""
+    forward, left = ball_ego[0] - spot_forward_m, ball_ego[1] - spot_left_m
+    return -0.03 <= forward <= 0.06 and abs(left) <= 0.03
+
+
+__all__ = ["TAKER_WAIT_S", "TakerMemory", "kick_window", "own_set_piece"]
