@@ -9,8 +9,9 @@ Run::
 
     python -m motion_studio.tune_gait walk_forward --generations 30 --workers 2 --write
 
-The checkpoint (JSON: CMA-ES state, every evaluation, the best so far) is rewritten after each generation;
-running the same command again resumes from it. ``--write`` puts the best parameters into
+The run folder (``out/tuning/gait_<motion>_<step cycles>``: checkpoint, trace of every evaluation, plots;
+``motion_studio.tuning``) is checkpointed after each generation; running the same command again resumes from
+it. ``--write`` puts the best parameters into
 ``motions/params/gait.toml`` (section = motion name, with a provenance line and the measured speeds) and
 regenerates the motion file.
 """
@@ -21,17 +22,19 @@ import argparse
 import datetime
 import json
 import math
-import time
 from collections.abc import Callable, Sequence
-from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass, fields, replace
+from functools import partial
 from pathlib import Path
 
 import numpy as np
 
 from agent.motion import MotionLibrary
 from kinematics.errors import IKError
-from motion_studio.cmaes import CMAES, Dimension
+from motion_studio.tuning import Parameter, Problem, make_backend
+from motion_studio.tuning.cmaes_run import legacy_data, run_cmaes
+from motion_studio.tuning.params_file import Provenance, write_file
+from motion_studio.tuning.run_folder import default_run_dir
 from motion_studio.walk_rollout import Push, WalkRun, run_walk
 from motions.authoring.gait import GaitParams, build_walk, write_gait_files
 from motions.authoring.gait_params import (GAIT_PARAMS_PATH, dumps_gait_params, load_gait_params, provenance,
@@ -40,24 +43,22 @@ from motions.authoring.gait_params import (GAIT_PARAMS_PATH, dumps_gait_params, 
 #: Direction of each walk in the robot frame (forward, left).
 DIRECTIONS: dict[str, tuple[float, float]] = {"walk_forward": (1.0, 0.0), "walk_backward": (-1.0, 0.0),
                                               "walk_left": (0.0, 1.0), "walk_right": (0.0, -1.0)}
-#: Default checkpoint folder (outside the work tree).
-CHECKPOINT_DIR = Path("/tmp/nao3d-tune")
 
 
 #: Search spaces: gait shape (every walk) and posture (the forward walk's, which the stance shares).
-SHAPE = (Dimension("step_height_m", 0.01, 0.05), Dimension("sway_m", 0.0, 0.04),
-         Dimension("sway_phase", -0.3, 0.3), Dimension("swing_linear", 0.0, 1.0),
-         Dimension("double_support_cycles", 0, 2, step=1), Dimension("toe_out_deg", 0.0, 6.0),
-         Dimension("ramp_steps", 1, 4, step=1))
-POSTURE = (Dimension("torso_height_m", 0.30, 0.365), Dimension("torso_pitch_deg", 0.0, 25.0),
-           Dimension("torso_forward_m", -0.03, 0.04), Dimension("foot_spacing_m", 0.09, 0.14))
+SHAPE = (Parameter("step_height_m", 0.01, 0.05), Parameter("sway_m", 0.0, 0.04),
+         Parameter("sway_phase", -0.3, 0.3), Parameter("swing_linear", 0.0, 1.0),
+         Parameter("double_support_cycles", 0, 2, step=1), Parameter("toe_out_deg", 0.0, 6.0),
+         Parameter("ramp_steps", 1, 4, step=1))
+POSTURE = (Parameter("torso_height_m", 0.30, 0.365), Parameter("torso_pitch_deg", 0.0, 25.0),
+           Parameter("torso_forward_m", -0.03, 0.04), Parameter("foot_spacing_m", 0.09, 0.14))
 #: The posture is the shared stance's ([common]; every walk starts from and stops in ``stand``), so it is
 #: searched only with ``--posture`` (and then moved to [common] with ``--write --common``).
-SPACES: dict[str, tuple[Dimension, ...]] = {
-    "walk_forward": (Dimension("step_length_m", 0.04, 0.13),) + SHAPE + (Dimension("arm_swing_deg", 0, 30),),
-    "walk_backward": (Dimension("step_length_m", -0.09, -0.02),) + SHAPE + (Dimension("torso_pitch_deg", 0.0, 25.0),),
-    "walk_left": (Dimension("side_step_m", -0.08, -0.01), Dimension("step_length_m", -0.01, 0.01)) + SHAPE,
-    "walk_right": (Dimension("side_step_m", 0.01, 0.08), Dimension("step_length_m", -0.01, 0.01)) + SHAPE,
+SPACES: dict[str, tuple[Parameter, ...]] = {
+    "walk_forward": (Parameter("step_length_m", 0.04, 0.13),) + SHAPE + (Parameter("arm_swing_deg", 0, 30),),
+    "walk_backward": (Parameter("step_length_m", -0.09, -0.02),) + SHAPE + (Parameter("torso_pitch_deg", 0.0, 25.0),),
+    "walk_left": (Parameter("side_step_m", -0.08, -0.01), Parameter("step_length_m", -0.01, 0.01)) + SHAPE,
+    "walk_right": (Parameter("side_step_m", 0.01, 0.08), Parameter("step_length_m", -0.01, 0.01)) + SHAPE,
 }
 
 
@@ -182,9 +183,10 @@ def evaluate(motion: str, params: GaitParams, trials: Sequence[Trial], robust: R
     return out
 
 
-def _evaluate_packed(packed: tuple) -> dict[str, object]:
-    motion, values, trials, robust = packed
-    return evaluate(motion, _params(values), trials, robust)
+def _evaluate_values(motion: str, base: dict, trials: tuple[Trial, ...], robust: Robust | None,
+                     values: dict[str, float]) -> dict[str, object]:
+    """:func:`evaluate` of the base with ``values`` put in, from plain data (runs in worker processes)."""
+    return evaluate(motion, replace(_params(base), **values), trials, robust)
 
 
 def _params(values: dict) -> GaitParams:
@@ -201,56 +203,24 @@ def _as_dict(params: GaitParams) -> dict:
     return out
 
 
-def tune(motion: str, base: GaitParams, dimensions: Sequence[Dimension], trials: Sequence[Trial], generations: int,
+def tune(motion: str, base: GaitParams, dimensions: Sequence[Parameter], trials: Sequence[Trial], generations: int,
          checkpoint: Path, workers: int = 1, sigma0: float = 0.15, popsize: int | None = None, seed: int = 0,
-         progress: Callable[[str], None] = print, robust: Robust | None = None) -> dict:
-    """Run (or resume) CMA-ES from ``base``; returns the checkpoint data (``best`` = lowest loss). With
-    ``robust``, each generation draws its own transition scripts (seed = generation), shared by its
-    candidates; ``best`` then compares losses over different scripts, so :func:`validate` re-ranks the
+         progress: Callable[[str], None] | None = print, robust: Robust | None = None, bar: bool = False) -> dict:
+    """Run (or resume) CMA-ES from ``base`` in the run folder ``checkpoint``; returns ``best`` (lowest loss,
+    whole parameters), every ``evaluations`` entry, ``motion`` and ``base``. With ``robust``, every candidate
+    plays the same ``robust.count`` transition scripts (the robust seed); :func:`validate` re-ranks the
     leading candidates on one larger set."""
-    if checkpoint.is_file():
-        data = json.loads(checkpoint.read_text())
-        if data.get("motion") != motion or [d.name for d in dimensions] != data.get("dimensions"):
-            raise ValueError(f"{checkpoint} belongs to another search ({data.get('motion')}, {data.get('dimensions')})")
-        strategy = CMAES.from_state(data["cmaes"])
-        progress(f"resumed {checkpoint} at generation {strategy.generation}")
-    else:
-        x0 = np.array([d.to_unit(getattr(base, d.name)) for d in dimensions])
-        strategy = CMAES.create(x0, sigma0, popsize, seed)
-        data = {"motion": motion, "dimensions": [d.name for d in dimensions], "base": _as_dict(base),
-                "evaluations": [], "best": None}
-        base_result = evaluate(motion, base, trials, robust)
-        data["best"] = {"loss": base_result["loss"], "params": _as_dict(base), "result": base_result}
-        progress(f"base loss {base_result['loss']:.4f} {base_result['trials']}")
-    checkpoint.parent.mkdir(parents=True, exist_ok=True)
-    pool = ProcessPoolExecutor(workers) if workers > 1 else None
+    problem = Problem(f"gait:{motion}", tuple(dimensions),
+                      partial(_evaluate_values, motion, _as_dict(base), tuple(trials), robust),
+                      start={d.name: getattr(base, d.name) for d in dimensions}, fail_loss=10.0,
+                      rollouts_per_candidate=len(trials) + (robust.count if robust else 0))
+    backend = make_backend("inprocess", workers)
     try:
-        while strategy.generation < generations:
-            started = time.monotonic()
-            candidates = strategy.ask()
-            params = [replace(base, **{d.name: d.from_unit(u) for d, u in zip(dimensions, x)}) for x in candidates]
-            generation_robust = replace(robust, seed=strategy.generation + 1) if robust else None
-            packed = [(motion, _as_dict(p), tuple(trials), generation_robust) for p in params]
-            results = list(pool.map(_evaluate_packed, packed) if pool else map(_evaluate_packed, packed))
-            strategy.tell([float(r["loss"]) for r in results])
-            for p, r in zip(params, results):
-                data["evaluations"].append({"generation": strategy.generation, "params": _as_dict(p), "result": r})
-                if r["loss"] < data["best"]["loss"]:
-                    data["best"] = {"loss": r["loss"], "params": _as_dict(p), "result": r}
-            data["cmaes"] = strategy.state()
-            tmp = checkpoint.with_suffix(".tmp")
-            tmp.write_text(json.dumps(data))
-            tmp.replace(checkpoint)
-            losses = sorted(float(r["loss"]) for r in results)
-            best = data["best"]
-            shown = {d.name: best["params"][d.name] for d in dimensions}
-            progress(f"gen {strategy.generation}/{generations} {time.monotonic() - started:.0f}s  "
-                     f"loss min {losses[0]:.4f} median {losses[len(losses) // 2]:.4f}  sigma {strategy.sigma:.3f}  "
-                     f"best {best['loss']:.4f} {shown} {best['result']['trials']} {best['result'].get('robust', '')}")
+        result = run_cmaes(problem, checkpoint, generations, sigma0, popsize, seed, backend, progress, bar)
     finally:
-        if pool:
-            pool.shutdown()
-    return data
+        backend.close()
+    data = legacy_data(result, lambda values: _as_dict(replace(base, **values)))
+    return {"motion": motion, "dimensions": [d.name for d in dimensions], "base": _as_dict(base), **data}
 
 
 def validate(data: dict, trials: Sequence[Trial], robust: Robust, top: int = 4,
@@ -293,9 +263,9 @@ def write_best(motion: str, best: dict, command: str, params_path: Path = GAIT_P
     figures = measure(motion, best_params)
     provenances = {name: provenance(params_path, name) for name in ["common", *table]}
     date = datetime.date.today().isoformat()
-    provenances[motion] = (f"{command} on {date}: loss {best['loss']:.4f}; steady forward {figures['forward_m_s']:.3f} "
-                           f"m/s, left {figures['left_m_s']:.3f} m/s over {figures['time_s']:.0f} s, "
-                           f"fell {figures['fell']}")
+    provenances[motion] = Provenance.now(command).text(
+        f"loss {best['loss']:.4f}; steady forward {figures['forward_m_s']:.3f} m/s, left {figures['left_m_s']:.3f} m/s "
+        f"over {figures['time_s']:.0f} s, fell {figures['fell']}")
     if common_keys:
         provenances["common"] = f"posture keys {', '.join(common_keys)} from the tuned {motion} ({date})"
     text = dumps_gait_params(common, table, provenances, read_header(params_path))
@@ -304,7 +274,7 @@ def write_best(motion: str, best: dict, command: str, params_path: Path = GAIT_P
     at = lines.index(f"[{motion}]") + 2
     lines[at:at] = [f"measured_forward_m_s = {figures['forward_m_s']:.4f}", f"measured_left_m_s = {figures['left_m_s']:.4f}",
                     f"measured_stop_m = {figures['stop_m']:.4f}"]
-    params_path.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    write_file(params_path, "\n".join(lines) + "\n", load_gait_params)
     names = tuple(table) if common_keys else (motion,)
     return write_gait_files(params_path, names=names)
 
@@ -355,23 +325,25 @@ def measure_type(robot_type: int, names: Sequence[str] | None = None) -> Path:
              f"# Measured keys written by python -m motion_studio.tune_gait --measure-type {robot_type}."]
     for name, section in raw.items():
         lines += ["", f"[{name}]"] + [f"{key} = {_toml_value(value)}" for key, value in section.items()]
-    path.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    write_file(path, "\n".join(lines) + "\n", lambda written: tomllib.loads(written.read_text(encoding="utf-8")))
     write_type_gait_files(robot_type)
     return path
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(prog="python -m motion_studio.tune_gait", description=__doc__.split("\n\n")[0])
-    parser.add_argument("motion", choices=sorted(SPACES), nargs="?")
+    parser = argparse.ArgumentParser(prog="motion-studio tune gait", description=__doc__.split("\n\n")[0],
+                                     formatter_class=argparse.ArgumentDefaultsHelpFormatter)
+    parser.add_argument("motion", choices=sorted(SPACES), nargs="?", help="walk to tune")
     parser.add_argument("--measure-type", type=int, default=None, metavar="N",
                         help="measure robot type N's shipped walks into gait_type<N>.toml and regenerate them")
-    parser.add_argument("--generations", type=int, default=30)
-    parser.add_argument("--workers", type=int, default=1)
-    parser.add_argument("--popsize", type=int, default=None)
+    parser.add_argument("--generations", type=int, default=30, help="CMA-ES generations")
+    parser.add_argument("--workers", type=int, default=1, help="local processes for the rollouts")
+    parser.add_argument("--popsize", type=int, default=None, help="candidates per generation (default 4 + 3 ln n)")
     parser.add_argument("--sigma", type=float, default=0.15, help="initial step in box units (0-1)")
-    parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--seed", type=int, default=0, help="seed of the CMA-ES sampler")
     parser.add_argument("--step-cycles", type=int, default=None, help="fix step_cycles (cycles of 20 ms per step)")
-    parser.add_argument("--checkpoint", type=Path, default=None)
+    parser.add_argument("--checkpoint", type=Path, default=None,
+                        help="run folder (checkpoint, trace, plots); default out/tuning/gait_<motion>_<step cycles>")
     parser.add_argument("--quick", action="store_true", help="one short trial per candidate (smoke test)")
     parser.add_argument("--lean", action="store_true", help="add full-lean trials (the walk must stay steerable)")
     parser.add_argument("--robust", type=int, default=0, metavar="N",
@@ -394,19 +366,19 @@ def main(argv: list[str] | None = None) -> int:
         base = _params(json.loads(args.base_json.read_text()))
     if args.step_cycles:
         base = replace(base, step_cycles=args.step_cycles)
-    checkpoint = args.checkpoint or CHECKPOINT_DIR / (f"{args.motion}_{base.step_cycles}"
-                                                       + ("_robust" if args.robust else "") + ".json")
+    checkpoint = args.checkpoint or default_run_dir(f"gait_{args.motion}_{base.step_cycles}"
+                                                    + ("_robust" if args.robust else ""))
     robust = Robust(count=args.robust, noise_deg=args.noise_deg) if args.robust else None
     space = SPACES[args.motion] + (POSTURE if args.posture else ())
     trials = default_trials(args.motion, args.quick, args.lean)
     data = tune(args.motion, base, space, trials, args.generations, checkpoint, args.workers, args.sigma,
-                args.popsize, args.seed, robust=robust)
+                args.popsize, args.seed, robust=robust, bar=True)
     print(f"best loss {data['best']['loss']:.4f}: {data['best']['params']}")
     if args.validate:
         data["best"] = validate(data, trials, Robust(seed=10_000, count=args.validate, noise_deg=args.noise_deg))
         print(f"validated best loss {data['best']['loss']:.4f}: {data['best']['params']}")
     if args.write:
-        command = (f"python -m motion_studio.tune_gait {args.motion} --step-cycles {base.step_cycles} "
+        command = (f"motion-studio tune gait {args.motion} --step-cycles {base.step_cycles} "
                    f"--generations {args.generations} --seed {args.seed}" + (" --lean" if args.lean else "")
                    + (f" --robust {args.robust} --noise-deg {args.noise_deg}" if args.robust else "")
                    + (f" --validate {args.validate}" if args.validate else "") + (" --posture" if args.posture else ""))

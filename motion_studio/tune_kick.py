@@ -29,35 +29,35 @@ distance credited up to ``--ours-cap-m``), so the kick keeps working here too::
 
     python -m motion_studio.tune_kick kick --backend both --generations 30 --sigma 0.1 --only ...
 
-The checkpoint (JSON in /tmp/nao3d-tune: CMA-ES state, every evaluation, the best so far; ``_real`` or
-``_both`` in the name for those backends) is rewritten after each generation; the same command resumes from
-it. ``--write`` puts the best parameters into ``motions/params/kick.toml`` (the section of the kick, with
+The run folder (``out/tuning/kick_<section>``, ``_real`` or ``_both`` for those backends: checkpoint, trace
+of every evaluation, plots; ``motion_studio.tuning``) is checkpointed after each generation; the same command
+resumes from it. ``--write`` puts the best parameters into ``motions/params/kick.toml`` (the section of the kick, with
 provenance and measured figures) and regenerates the kick files.
 """
 
 from __future__ import annotations
 
 import argparse
-import datetime
 import json
 import sys
-import time
 from collections.abc import Callable, Sequence
-from concurrent.futures import ProcessPoolExecutor
 from dataclasses import asdict, dataclass, fields, replace
+from functools import partial
 from pathlib import Path
 
 import numpy as np
 
 from agent.motion import MotionLibrary
 from kinematics.errors import IKError
-from motion_studio.cmaes import CMAES, Dimension
 from motion_studio.kick_rollout import KickRun, Placement, run_kick
+from motion_studio.tuning import InProcess, Parameter, Problem, TuningError, make_backend, subset
+from motion_studio.tuning.cmaes_run import legacy_data, run_cmaes
+from motion_studio.tuning.params_file import Provenance, toml_value, write_sections
+from motion_studio.tuning.run_folder import best_values, default_run_dir
 from motions.authoring.gait import GaitParams, build_stance
 from motions.authoring.kick import (COMMON, PARAMS_PATH, KickParams, build_kick, kick_params, parse_kick_params,
                                     stance_params, write_all)
 
-CHECKPOINT_DIR = Path("/tmp/nao3d-tune")
 #: Placements every candidate is tried from: the nominal spot and errors a positioning skill leaves, as
 #: wide as the kick benchmark draws them (ball +-2 cm along and +-1.5 cm across the kick line, robot heading
 #: +-3 deg), every 0.5 cm along the line, and on to the far end of KickToward's loose window (ball up to
@@ -105,22 +105,22 @@ class Backend:
 #: at least 0.11 m ahead of the support sole's centre: the shipped 0.125 m came from a placement sweep, and
 #: closer than that the weight shift nudges a ball placed 2 cm short of its spot).
 SPACE = (
-    Dimension("shift_ms", 300, 700, 20), Dimension("com_inset_m", -0.01, 0.025), Dimension("com_forward_m", -0.02, 0.05),
-    Dimension("torso_pitch_deg", -4.0, 8.0), Dimension("torso_height_m", 0.32, 0.36),
-    Dimension("shift_torso_roll_deg", -10.0, 6.0), Dimension("lift_height_m", 0.02, 0.06),
-    Dimension("kick_foot_x_m", 0.05, 0.11), Dimension("windup_ms", 100, 300, 20),
-    Dimension("windup_back_m", -0.12, -0.03), Dimension("windup_height_m", 0.03, 0.10),
-    Dimension("windup_pitch_deg", -45.0, 0.0), Dimension("windup_yaw_deg", -12.0, 0.0),
-    Dimension("windup_torso_pitch_deg", -5.0, 12.0), Dimension("windup_torso_yaw_deg", -20.0, 0.0),
-    Dimension("strike_torso_yaw_deg", -10.0, 0.0), Dimension("strike_torso_pitch_deg", -5.0, 20.0),
-    Dimension("swing_ms", 0, 60, 20), Dimension("swing_forward_m", -0.05, 0.04), Dimension("swing_height_m", 0.02, 0.06),
-    Dimension("swing_pitch_deg", -30.0, 30.0), Dimension("strike_ms", 20, 160, 20),
-    Dimension("strike_forward_m", 0.06, 0.18), Dimension("strike_height_m", 0.02, 0.08),
-    Dimension("strike_pitch_deg", -35.0, 30.0), Dimension("strike_yaw_deg", -20.0, 10.0),
-    Dimension("strike_ankle_offset_deg", 0.0, 120.0), Dimension("strike_hip_offset_deg", -50.0, 0.0),
-    Dimension("follow_ms", 20, 200, 20), Dimension("retract_ms", 200, 500, 20), Dimension("land_ms", 200, 500, 20),
-    Dimension("recover_ms", 300, 900, 20), Dimension("arm_swing_deg", 0.0, 40.0),
-    Dimension("ball_ahead_m", 0.11, 0.23), Dimension("ball_side_m", 0.03, 0.13),
+    Parameter("shift_ms", 300, 700, 20), Parameter("com_inset_m", -0.01, 0.025), Parameter("com_forward_m", -0.02, 0.05),
+    Parameter("torso_pitch_deg", -4.0, 8.0), Parameter("torso_height_m", 0.32, 0.36),
+    Parameter("shift_torso_roll_deg", -10.0, 6.0), Parameter("lift_height_m", 0.02, 0.06),
+    Parameter("kick_foot_x_m", 0.05, 0.11), Parameter("windup_ms", 100, 300, 20),
+    Parameter("windup_back_m", -0.12, -0.03), Parameter("windup_height_m", 0.03, 0.10),
+    Parameter("windup_pitch_deg", -45.0, 0.0), Parameter("windup_yaw_deg", -12.0, 0.0),
+    Parameter("windup_torso_pitch_deg", -5.0, 12.0), Parameter("windup_torso_yaw_deg", -20.0, 0.0),
+    Parameter("strike_torso_yaw_deg", -10.0, 0.0), Parameter("strike_torso_pitch_deg", -5.0, 20.0),
+    Parameter("swing_ms", 0, 60, 20), Parameter("swing_forward_m", -0.05, 0.04), Parameter("swing_height_m", 0.02, 0.06),
+    Parameter("swing_pitch_deg", -30.0, 30.0), Parameter("strike_ms", 20, 160, 20),
+    Parameter("strike_forward_m", 0.06, 0.18), Parameter("strike_height_m", 0.02, 0.08),
+    Parameter("strike_pitch_deg", -35.0, 30.0), Parameter("strike_yaw_deg", -20.0, 10.0),
+    Parameter("strike_ankle_offset_deg", 0.0, 120.0), Parameter("strike_hip_offset_deg", -50.0, 0.0),
+    Parameter("follow_ms", 20, 200, 20), Parameter("retract_ms", 200, 500, 20), Parameter("land_ms", 200, 500, 20),
+    Parameter("recover_ms", 300, 900, 20), Parameter("arm_swing_deg", 0.0, 40.0),
+    Parameter("ball_ahead_m", 0.11, 0.23), Parameter("ball_side_m", 0.03, 0.13),
 )
 
 
@@ -199,11 +199,12 @@ def evaluate_backends(params: KickParams, stance: GaitParams, objective: Objecti
     return out
 
 
-def _evaluate_packed(packed: tuple[dict, dict, dict]) -> dict[str, object]:
-    values, stance_values, objective = packed
+def _evaluate_values(base: dict, stance_values: dict, objective: dict, values: dict[str, float]) -> dict[str, object]:
+    """:func:`evaluate` of the base with ``values`` put in, from plain data (runs in worker processes)."""
     from motions.authoring.gait_params import _gait_values
 
-    return evaluate(KickParams(**values), GaitParams(**_gait_values(stance_values, "stance")), Objective(**objective))
+    return evaluate(KickParams(**{**base, **values}), GaitParams(**_gait_values(stance_values, "stance")),
+                    Objective(**objective))
 
 
 def _stance_dict(stance: GaitParams) -> dict:
@@ -214,99 +215,59 @@ def _stance_dict(stance: GaitParams) -> dict:
     return out
 
 
-def tune(section: str, base: KickParams, stance: GaitParams, dimensions: Sequence[Dimension], objective: Objective,
+def kick_problem(section: str, base: KickParams, stance: GaitParams, dimensions: Sequence[Parameter],
+                 objective: Objective, backends: Sequence[Backend] | None = None) -> Problem:
+    """The kick as a tuning problem: ``dimensions`` of ``base`` scored by :func:`evaluate` on our simulator
+    from PLACEMENTS, or by :func:`evaluate_backends` (e.g. the real-server bench) with ``backends``."""
+    if backends:
+        def judge(values: dict[str, float]) -> dict[str, object]:
+            return evaluate_backends(replace(base, **values), stance, objective, backends)
+        evaluate_fn: Callable[[dict[str, float]], dict[str, object]] = judge
+        rollouts = sum(len(b.placements) for b in backends)
+    else:
+        evaluate_fn = partial(_evaluate_values, asdict(base), _stance_dict(stance), asdict(objective))
+        rollouts = len(PLACEMENTS)
+    return Problem(f"kick:{section}", tuple(dimensions), evaluate_fn,
+                   start={d.name: getattr(base, d.name) for d in dimensions}, fail_loss=20.0,
+                   rollouts_per_candidate=rollouts)
+
+
+def tune(section: str, base: KickParams, stance: GaitParams, dimensions: Sequence[Parameter], objective: Objective,
          generations: int, checkpoint: Path, workers: int = 1, sigma0: float = 0.15, popsize: int | None = None,
-         seed: int = 0, progress: Callable[[str], None] = print, backends: Sequence[Backend] | None = None) -> dict:
-    """Run (or resume) CMA-ES from ``base``; returns the checkpoint data (``best`` = lowest loss).
+         seed: int = 0, progress: Callable[[str], None] | None = print, backends: Sequence[Backend] | None = None,
+         bar: bool = False) -> dict:
+    """Run (or resume) CMA-ES from ``base`` in the run folder ``checkpoint``; returns ``best`` (lowest loss,
+    whole parameters) and every ``evaluations`` entry.
 
     With ``backends`` (e.g. a real-server bench) the candidates are evaluated one after the other in this
     process (:func:`evaluate_backends`); without, on our simulator from PLACEMENTS in ``workers`` processes.
     """
-    if checkpoint.is_file():
-        data = json.loads(checkpoint.read_text())
-        if data.get("section") != section or [d.name for d in dimensions] != data.get("dimensions"):
-            raise ValueError(f"{checkpoint} belongs to another search ({data.get('section')})")
-        strategy = CMAES.from_state(data["cmaes"])
-        progress(f"resumed {checkpoint} at generation {strategy.generation}")
-    else:
-        x0 = np.array([d.to_unit(getattr(base, d.name)) for d in dimensions])
-        strategy = CMAES.create(x0, sigma0, popsize, seed)
-        base_result = (evaluate_backends(base, stance, objective, backends) if backends
-                       else evaluate(base, stance, objective))
-        data = {"section": section, "dimensions": [d.name for d in dimensions], "objective": asdict(objective),
-                "base": asdict(base), "evaluations": [],
-                "best": {"loss": base_result["loss"], "params": asdict(base), "result": base_result}}
-        progress(f"base loss {base_result['loss']:.3f} {base_result['runs']}")
-    checkpoint.parent.mkdir(parents=True, exist_ok=True)
-    pool = ProcessPoolExecutor(workers) if workers > 1 and not backends else None
-    stance_values = _stance_dict(stance)
+    problem = kick_problem(section, base, stance, dimensions, objective, backends)
+    backend = InProcess() if backends else make_backend("inprocess", workers)
     try:
-        while strategy.generation < generations:
-            started = time.monotonic()
-            candidates = strategy.ask()
-            params = [replace(base, **{d.name: d.from_unit(u) for d, u in zip(dimensions, x)}) for x in candidates]
-            if backends:
-                results = [evaluate_backends(p, stance, objective, backends) for p in params]
-            else:
-                packed = [(asdict(p), stance_values, asdict(objective)) for p in params]
-                results = list(pool.map(_evaluate_packed, packed) if pool else map(_evaluate_packed, packed))
-            strategy.tell([float(r["loss"]) for r in results])  # type: ignore[arg-type]
-            for p, r in zip(params, results):
-                data["evaluations"].append({"generation": strategy.generation, "params": asdict(p), "result": r})
-                if float(r["loss"]) < data["best"]["loss"]:  # type: ignore[arg-type]
-                    data["best"] = {"loss": r["loss"], "params": asdict(p), "result": r}
-            data["cmaes"] = strategy.state()
-            tmp = checkpoint.with_suffix(".tmp")
-            tmp.write_text(json.dumps(data))
-            tmp.replace(checkpoint)
-            losses = sorted(float(r["loss"]) for r in results)  # type: ignore[arg-type]
-            best = data["best"]
-            runs = [(r["distance_m"], r["fell"], r["trapped"]) for r in best["result"]["runs"]]
-            progress(f"gen {strategy.generation}/{generations} {time.monotonic() - started:.0f}s  loss min "
-                     f"{losses[0]:.3f} median {losses[len(losses) // 2]:.3f}  sigma {strategy.sigma:.3f}  "
-                     f"best {best['loss']:.3f} runs {runs}")
+        result = run_cmaes(problem, checkpoint, generations, sigma0, popsize, seed, backend, progress, bar,
+                           meta={"objective": asdict(objective)})
     finally:
-        if pool:
-            pool.shutdown()
-    return data
-
-
-def _toml_value(value: object) -> str:
-    if isinstance(value, bool):
-        return "true" if value else "false"
-    if isinstance(value, int):
-        return str(value)
-    if isinstance(value, float):
-        return repr(round(value, 6))
-    return '"' + str(value).replace("\\", "\\\\").replace('"', '\\"') + '"'
+        backend.close()
+    return legacy_data(result, lambda values: asdict(replace(base, **values)))
 
 
 def write_section(section: str, params: KickParams, provenance: str, measured: str,
                   path: Path = PARAMS_PATH) -> None:
     """Rewrite ``[section]`` of the kick parameter file (its differences from [common], provenance and
-    measured figures), keeping the file's header comments and the other sections."""
-    text = path.read_text(encoding="utf-8")
-    header_lines = []
-    for line in text.splitlines():
-        if line.startswith("["):
-            break
-        header_lines.append(line)
+    measured figures) through the tuning room's one writer; the header comments and other sections stay."""
     import tomllib
 
-    data = tomllib.loads(text)
+    text = path.read_text(encoding="utf-8")
     parse_kick_params(text, str(path))  # the file must be valid before we touch it
+    data = tomllib.loads(text)
     common = KickParams(**{k: v for k, v in data.get(COMMON, {}).items() if k not in ("provenance", "measured")})
-    data[section] = {"provenance": provenance, "measured": measured,
-                     **{f.name: getattr(params, f.name) for f in fields(params)
-                        if getattr(params, f.name) != getattr(common, f.name)}}
-    lines = list(header_lines)
-    for name, table in data.items():
-        lines.append(f"[{name}]")
-        lines += [f"{key} = {_toml_value(value)}" for key, value in table.items()]
-        lines.append("")
-    new_text = "\n".join(lines).rstrip("\n") + "\n"
-    parse_kick_params(new_text, str(path))
-    path.write_text(new_text, encoding="utf-8")
+    values = {"provenance": provenance, "measured": measured,
+              **{f.name: getattr(params, f.name) for f in fields(params)
+                 if getattr(params, f.name) != getattr(common, f.name)}}
+    body = "\n".join([f"[{section}]"] + [f"{key} = {toml_value(value)}" for key, value in values.items()]) + "\n"
+    write_sections(path, {section: body}, lambda written: parse_kick_params(written.read_text(encoding="utf-8"),
+                                                                             str(written)))
 
 
 def measured_note(runs: Sequence[dict]) -> str:
@@ -325,24 +286,26 @@ def measured_note(runs: Sequence[dict]) -> str:
 
 
 def main(argv: list[str] | None = None) -> None:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser = argparse.ArgumentParser(prog="motion-studio tune kick", description=__doc__.splitlines()[0],
+                                     formatter_class=argparse.ArgumentDefaultsHelpFormatter)
     parser.add_argument("section", help="kick section of motions/params/kick.toml (kick, kick_strong)")
-    parser.add_argument("--generations", type=int, default=30)
-    parser.add_argument("--workers", type=int, default=1)
-    parser.add_argument("--sigma", type=float, default=0.15)
-    parser.add_argument("--popsize", type=int, default=None)
-    parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--generations", type=int, default=30, help="CMA-ES generations")
+    parser.add_argument("--workers", type=int, default=1, help="local processes for our simulator's rollouts")
+    parser.add_argument("--sigma", type=float, default=0.15, help="initial CMA-ES step in box units (0-1)")
+    parser.add_argument("--popsize", type=int, default=None, help="candidates per generation (default 4 + 3 ln n)")
+    parser.add_argument("--seed", type=int, default=0, help="seed of the CMA-ES sampler")
     parser.add_argument("--cap-m", type=float, default=12.0, help="distance credited at most [m]")
     parser.add_argument("--time-weight", type=float, default=0.0, help="score lost per second of motion [m/s]")
     parser.add_argument("--direction-weight", type=float, default=Objective.direction_m_per_deg,
                         help="score lost per degree of direction error beyond 3 deg [m/deg]")
     parser.add_argument("--start", default=None, help="start from this section's parameters (default: section)")
     parser.add_argument("--start-checkpoint", type=Path, default=None,
-                        help="start from the best parameters of another search's checkpoint (e.g. --backend real, "
+                        help="start from the best parameters of another search's run folder (or old JSON checkpoint) (e.g. --backend real, "
                              "then --backend both from its best)")
     parser.add_argument("--only", default=None,
                         help="comma-separated parameter names: tune only these (the others stay at the start's)")
-    parser.add_argument("--checkpoint", type=Path, default=None)
+    parser.add_argument("--checkpoint", type=Path, default=None,
+                        help="run folder (checkpoint, trace, plots); default out/tuning/kick_<section>[_real|_both]")
     parser.add_argument("--write", action="store_true", help="write the best into kick.toml and regenerate")
     parser.add_argument("--backend", choices=BACKENDS, default="mujoco",
                         help="where the rollouts run: our simulator (default), the real rcssserver3d "
@@ -360,20 +323,21 @@ def main(argv: list[str] | None = None) -> None:
     stance = stance_params()
     base = kick_params(args.start or args.section)
     if args.start_checkpoint is not None:
-        base = KickParams(**json.loads(args.start_checkpoint.read_text())["best"]["params"])
+        if args.start_checkpoint.is_dir():  # a run folder of the tuning room
+            base = replace(base, **best_values(args.start_checkpoint))
+        else:  # a JSON checkpoint of the tuner before the tuning room
+            base = KickParams(**json.loads(args.start_checkpoint.read_text())["best"]["params"])
     objective = Objective(cap_m=args.cap_m, time_weight_m_per_s=args.time_weight,
                           direction_m_per_deg=args.direction_weight)
     real = args.backend != "mujoco"
     suffix = {"mujoco": "", "real": "_real", "both": "_both"}[args.backend]
-    checkpoint = args.checkpoint or CHECKPOINT_DIR / f"kick_{args.section}{suffix}.json"
+    checkpoint = args.checkpoint or default_run_dir(f"kick_{args.section}{suffix}")
     dimensions = SPACE
     if args.only:
-        names = [name.strip() for name in args.only.split(",") if name.strip()]
-        known = {d.name: d for d in SPACE}
-        unknown = [name for name in names if name not in known]
-        if unknown:
-            parser.error(f"--only: unknown parameters {unknown}; known: {', '.join(known)}")
-        dimensions = tuple(known[name] for name in names)
+        try:
+            dimensions = subset(SPACE, [name.strip() for name in args.only.split(",") if name.strip()])
+        except TuningError as error:
+            parser.error(str(error))
     if real:
         from motion_studio.realserver.rollout_kick import RealKickBench, ensure_private_network
 
@@ -384,10 +348,10 @@ def main(argv: list[str] | None = None) -> None:
                 ours = PLACEMENTS if args.ours_placements == "all" else OURS_CHECK_PLACEMENTS
                 backends.append(Backend("mujoco", mujoco_rollout, ours, args.ours_weight, args.ours_cap_m))
             data = tune(args.section, base, stance, dimensions, objective, args.generations, checkpoint, 1,
-                        args.sigma, args.popsize, args.seed, backends=backends)
+                        args.sigma, args.popsize, args.seed, backends=backends, bar=True)
     else:
         data = tune(args.section, base, stance, dimensions, objective, args.generations, checkpoint, args.workers,
-                    args.sigma, args.popsize, args.seed)
+                    args.sigma, args.popsize, args.seed, bar=True)
     best = data["best"]
     print(json.dumps(best["result"], indent=1))
     if args.write:
@@ -395,14 +359,14 @@ def main(argv: list[str] | None = None) -> None:
         where = {"mujoco": "our simulator", "real": "the real rcssserver3d 0.7.3",
                  "both": f"the real rcssserver3d 0.7.3 and our simulator (weight {args.ours_weight}, "
                          f"cap {args.ours_cap_m} m, placements {args.ours_placements})"}[args.backend]
-        provenance = (f"CMA-ES on {where}, python -m motion_studio.tune_kick {args.section} --generations "
-                      f"{args.generations} --sigma {args.sigma} --cap-m {args.cap_m} --time-weight {args.time_weight} "
-                      f"--direction-weight {args.direction_weight}"
-                      f"{' --start ' + args.start if args.start else ''}"
-                      f"{' --start-checkpoint ' + str(args.start_checkpoint) if args.start_checkpoint else ''}"
-                      f"{' --only ' + args.only if args.only else ''}"
-                      f"{' --backend ' + args.backend if real else ''}, "
-                      f"{datetime.date.today().isoformat()}")
+        command = (f"motion-studio tune kick {args.section} --generations "
+                   f"{args.generations} --sigma {args.sigma} --cap-m {args.cap_m} --time-weight {args.time_weight} "
+                   f"--direction-weight {args.direction_weight}"
+                   f"{' --start ' + args.start if args.start else ''}"
+                   f"{' --start-checkpoint ' + str(args.start_checkpoint) if args.start_checkpoint else ''}"
+                   f"{' --only ' + args.only if args.only else ''}"
+                   f"{' --backend ' + args.backend if real else ''}")
+        provenance = Provenance.now(command).text(f"CMA-ES on {where}")
         write_section(args.section, KickParams(**best["params"]), provenance, measured)
         for path in write_all():
             print(f"wrote {path}")

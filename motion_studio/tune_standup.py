@@ -26,35 +26,35 @@ Run::
     python -m motion_studio.tune_standup standup_front --generations 60 --write
     motion-studio tune standup standup_back --backend both --starts 8 --noise --workers 2
 
-The checkpoint (JSON: CMA-ES state, the best so far) is rewritten after each generation; running the same
-command again resumes from it. ``--write`` puts the best parameters into ``motions/params/standup.toml``
+The run folder (``out/tuning/standup_<section>``: checkpoint, trace of every evaluation, plots;
+``motion_studio.tuning``) is checkpointed after each generation; running the same command again resumes from
+it. ``--write`` puts the best parameters into ``motions/params/standup.toml``
 (with a provenance line) and regenerates the motion files.
 """
 
 from __future__ import annotations
 
 import argparse
-import datetime
 import json
 import math
 import random
-import time
-from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass, replace
-from functools import lru_cache
+from functools import lru_cache, partial
 from pathlib import Path
 
 import numpy as np
 
 from agent.motion import MotionController, MotionLibrary, default_library, load_dynamic_params
 from agent.skills.base import PlayMotion
-from motion_studio.cmaes import CMAES, Dimension
 from motion_studio.scenarios import Scenario
+from motion_studio.tuning import BatchBackend, Parameter, Problem, make_backend
+from motion_studio.tuning.cmaes_run import run_cmaes
+from motion_studio.tuning.params_file import Provenance, write_file
+from motion_studio.tuning.run_folder import default_run_dir
 from motions.authoring.standup import (PARAMS_PATH, STANDUPS, GroundPose, StandUpParams, build_standup,
                                        dumps_section, load_standup_params, read_meta, stance_params, write_all)
 from motions.model import Motion
 
-CHECKPOINT_DIR = Path("/tmp/nao3d-tune")
 CYCLE_S = 0.02
 #: Standing for the loss: torso centre height [m], up axis z, summed foot force [N], for HOLD_S.
 STAND_Z_M = 0.30
@@ -99,12 +99,12 @@ POSE_BOUNDS: dict[str, tuple[float, float, bool]] = {
 }
 
 
-def _dimension(path: str, low: float, high: float, integer: bool) -> Dimension:
+def _dimension(path: str, low: float, high: float, integer: bool) -> Parameter:
     """A tuned parameter named by its dotted path (``crouch_ms``, ``ground.1.knee_deg``)."""
-    return Dimension(path, low, high, step=1 if integer else 0.0, decimals=3)
+    return Parameter(path, low, high, step=1 if integer else 0.0, decimals=3)
 
 
-def dimensions(params: StandUpParams, frozen: frozenset[str] = frozenset(), timing_only: bool = False) -> list[Dimension]:
+def dimensions(params: StandUpParams, frozen: frozenset[str] = frozenset(), timing_only: bool = False) -> list[Parameter]:
     """Every tuned parameter of a stand-up with its bounds; ``frozen`` names
     ground phases (or ``ready``) kept as they are; ``timing_only`` keeps the ground phases' angles (their
     durations and the crouch / rise parameters are tuned)."""
@@ -304,58 +304,39 @@ def evaluate(section: str, params: StandUpParams, starts: tuple[Start, ...], tar
             "times_s": [run.time_s for run in runs], "self_collisions": [run.self_collisions for run in runs]}
 
 
-def _evaluate_packed(packed: tuple[str, StandUpParams, dict, tuple[Start, ...], float, float]) -> dict[str, object]:
-    section, base, values, starts, target_s, time_weight = packed
+def _evaluate_values(section: str, base: StandUpParams, starts: tuple[Start, ...], target_s: float, time_weight: float,
+                     values: dict[str, float]) -> dict[str, object]:
+    """:func:`evaluate` of the base with the dotted-path ``values`` put in (runs in worker processes)."""
     return evaluate(section, with_values(base, values), starts, target_s, time_weight)
 
 
 def tune(section: str, base: StandUpParams, generations: int, starts: tuple[Start, ...], sigma: float = 0.1,
          popsize: int | None = None, workers: int = 1, checkpoint: Path | None = None, seed: int = 0,
          frozen: frozenset[str] = frozenset(), log=print, timing_only: bool = False, target_s: float = TARGET_S,
-         time_weight: float = TIME_WEIGHT, evaluator=None) -> dict:
-    """CMA-ES over :func:`dimensions` around ``base``; returns the best {"loss", "values", "result"}.
+         time_weight: float = TIME_WEIGHT, evaluator=None, bar: bool = False) -> dict:
+    """CMA-ES over :func:`dimensions` around ``base`` in the run folder ``checkpoint`` (default
+    ``out/tuning/standup_<section>``); returns the best {"loss", "values", "result"}.
 
     ``evaluator``: judges a generation at once (``evaluator.evaluate(list of StandUpParams)``, e.g. the real
     server's ``motion_studio.realserver.standup_backend.RealEvaluator``); None = :func:`evaluate` on our
     simulator from ``starts`` in ``workers`` processes."""
     dims = dimensions(base, frozen, timing_only)
-    x0 = np.array([d.to_unit(get_value(base, d.name)) for d in dims])
-    state = json.loads(checkpoint.read_text()) if checkpoint and checkpoint.is_file() else None
-    if state is not None:
-        es = CMAES.from_state(state["cmaes"])
-        best = state["best"]
-        log(f"resumed at generation {es.generation}, best loss {best['loss']:.3f}")
+    problem = Problem(f"standup:{section}", tuple(dims),
+                      partial(_evaluate_values, section, base, starts, target_s, time_weight),
+                      start={d.name: get_value(base, d.name) for d in dims}, fail_loss=2 * FAIL_LOSS + 6.0,
+                      rollouts_per_candidate=len(starts))
+    if evaluator is not None:
+        backend = BatchBackend("real", lambda batch: evaluator.evaluate([with_values(base, v) for v in batch]))
     else:
-        es = CMAES.create(x0, sigma, popsize, seed)
-        first = evaluator.evaluate([base])[0] if evaluator else evaluate(section, base, starts, target_s, time_weight)
-        best = {"loss": first["loss"], "values": {d.name: get_value(base, d.name) for d in dims}, "result": first}
-        log(f"start loss {best['loss']:.3f} {first.get('times_s')}")
-    pool = ProcessPoolExecutor(workers) if workers > 1 and evaluator is None else None
+        backend = make_backend("inprocess", workers)
     try:
-        while es.generation < generations:
-            started = time.perf_counter()
-            candidates = es.ask()
-            values = [{d.name: d.from_unit(u) for d, u in zip(dims, x)} for x in candidates]
-            if evaluator is not None:
-                results = evaluator.evaluate([with_values(base, v) for v in values])
-            else:
-                packed = [(section, base, v, starts, target_s, time_weight) for v in values]
-                results = list(pool.map(_evaluate_packed, packed)) if pool else [_evaluate_packed(p) for p in packed]
-            losses = [float(r["loss"]) for r in results]
-            es.tell(losses)
-            i = int(np.argmin(losses))
-            if losses[i] < best["loss"]:
-                best = {"loss": losses[i], "values": values[i], "result": results[i]}
-            log(f"generation {es.generation}: min {min(losses):.3f} median {float(np.median(losses)):.3f} "
-                f"best {best['loss']:.3f} {best['result'].get('times_s')} sigma {es.sigma:.3f} "
-                f"({time.perf_counter() - started:.0f} s)")
-            if checkpoint is not None:
-                checkpoint.parent.mkdir(parents=True, exist_ok=True)
-                checkpoint.write_text(json.dumps({"section": section, "cmaes": es.state(), "best": best}))
+        result = run_cmaes(problem, checkpoint or default_run_dir(f"standup_{section}"), generations, sigma, popsize,
+                           seed, backend, log, bar)
     finally:
-        if pool is not None:
-            pool.shutdown()
-    return best
+        if evaluator is None:
+            backend.close()
+    return {"loss": result.best["loss"], "values": result.best["values"], "result": result.best["result"],
+            "run_dir": str(result.run_dir)}
 
 
 def write_best(section: str, params: StandUpParams, provenance: str, measured: str = "",
@@ -375,20 +356,22 @@ def write_best(section: str, params: StandUpParams, provenance: str, measured: s
         if name == section:
             meta = {"provenance": provenance, **({"measured": measured} if measured else {})}
         parts.append(dumps_section(name, value, meta))
-    path.write_text("\n".join(parts), encoding="utf-8")
+    write_file(path, "\n".join(parts), load_standup_params)
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser = argparse.ArgumentParser(prog="motion-studio tune standup", description=__doc__.splitlines()[0],
+                                     formatter_class=argparse.ArgumentDefaultsHelpFormatter)
     parser.add_argument("section", choices=sorted(STANDUPS), help="stand-up to tune")
-    parser.add_argument("--generations", type=int, default=40)
+    parser.add_argument("--generations", type=int, default=40, help="CMA-ES generations")
     parser.add_argument("--sigma", type=float, default=0.1, help="initial CMA-ES step (unit box)")
-    parser.add_argument("--popsize", type=int, default=None)
+    parser.add_argument("--popsize", type=int, default=None, help="candidates per generation (default 4 + 3 ln n)")
     parser.add_argument("--starts", type=int, default=4, help="lying starts per candidate")
     parser.add_argument("--noise", action="store_true", help="put seeded parameter noise on every start but the first")
-    parser.add_argument("--workers", type=int, default=1)
-    parser.add_argument("--seed", type=int, default=0)
-    parser.add_argument("--checkpoint", type=Path, default=None, help="default /tmp/nao3d-tune/<section>.json")
+    parser.add_argument("--workers", type=int, default=1, help="local processes (or real servers) for the rollouts")
+    parser.add_argument("--seed", type=int, default=0, help="seed of the CMA-ES sampler")
+    parser.add_argument("--checkpoint", type=Path, default=None,
+                        help="run folder (checkpoint, trace, plots); default out/tuning/standup_<section>[_real|_both]")
     parser.add_argument("--freeze", default="", help="comma-separated ground phases (or 'ready') kept as they are")
     parser.add_argument("--timing-only", action="store_true",
                         help="tune durations and the crouch / rise keyframes only (ground-phase angles kept)")
@@ -411,7 +394,7 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     base = load_standup_params(args.params)[args.section]
     suffix = "" if args.backend == "mujoco" else f"_{args.backend}"
-    checkpoint = args.checkpoint or CHECKPOINT_DIR / f"{args.section}{suffix}.json"
+    checkpoint = args.checkpoint or default_run_dir(f"standup_{args.section}{suffix}")
     starts = default_starts(args.starts, seed=args.starts_seed, noise=args.noise)
     frozen = frozenset(name for name in args.freeze.split(",") if name)
     evaluator = None
@@ -424,21 +407,21 @@ def main(argv: list[str] | None = None) -> int:
     try:
         best = tune(args.section, base, args.generations, starts, args.sigma, args.popsize, args.workers, checkpoint,
                     args.seed, frozen, timing_only=args.timing_only, target_s=args.target_s,
-                    time_weight=args.time_weight, evaluator=evaluator)
+                    time_weight=args.time_weight, evaluator=evaluator, bar=True)
     finally:
         if evaluator is not None:
             evaluator.close()
     print(json.dumps(best, indent=1))
     if args.write:
         params = with_values(base, best["values"])
-        date = datetime.date.today().isoformat()
         both = f" --sim-weight {args.sim_weight:g} --sim-starts {args.sim_starts}"
         options = (f" --backend {args.backend}" * (args.backend != "mujoco") + both * (args.backend == "both")
                    + f" --starts-seed {args.starts_seed}" * (args.starts_seed != 1) + " --noise" * args.noise
                    + " --timing-only" * args.timing_only
                    + (f" --target-s {args.target_s:g} --time-weight {args.time_weight:g}" if args.time_weight else ""))
-        provenance = (f"tuned by python -m motion_studio.tune_standup {args.section} --starts {len(starts)}{options} "
-                      f"--freeze '{args.freeze}' --sigma {args.sigma:g} (CMA-ES, {args.generations} generations) on {date}")
+        provenance = Provenance.now(f"motion-studio tune standup {args.section} --starts {len(starts)}{options} "
+                                    f"--freeze '{args.freeze}' --sigma {args.sigma:g} --generations {args.generations}"
+                                    ).text("tuned by CMA-ES")
         times = best["result"].get("times_s")
         write_best(args.section, params, provenance, f"loss {best['loss']:.3f}, time to stand per start {times} s",
                    args.params)

@@ -22,6 +22,19 @@ Result = dict[str, Any]
 Evaluate = Callable[[dict[str, float]], Result]
 
 
+#: Name suffixes that say a parameter's unit (STYLE: units in names).
+UNIT_SUFFIXES = {"_deg": "deg", "_rad": "rad", "_ms": "ms", "_s": "s", "_m": "m", "_m_s": "m/s", "_deg_m": "deg/m",
+                 "_n": "N", "_kg": "kg"}
+
+
+def unit_of(name: str) -> str:
+    """The unit a parameter's name ends with (``strike_height_m`` -> "m"), "" if none."""
+    for suffix, unit in sorted(UNIT_SUFFIXES.items(), key=lambda item: -len(item[0])):
+        if name.lower().endswith(suffix):
+            return unit
+    return ""
+
+
 @dataclass(frozen=True)
 class Parameter:
     """One tuned parameter and its bounds, mapped to and from the optimizer's [0, 1] box.
@@ -46,6 +59,8 @@ class Parameter:
     unit: str = ""
 
     def __post_init__(self) -> None:
+        if not self.unit:
+            object.__setattr__(self, "unit", unit_of(self.name))
         if not (math.isfinite(self.low) and math.isfinite(self.high)):
             raise TuningError(f"parameter {self.name!r}: bounds must be finite, got [{self.low}, {self.high}]")
         if self.low > self.high:

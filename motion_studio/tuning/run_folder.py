@@ -38,4 +38,21 @@ def where_lines(result: RunResult, plots: list[Path]) -> list[str]:
             f"trace: {result.trace}"]
 
 
-__all__ = ["RUNS_DIR", "default_run_dir", "draw_plots", "where_lines"]
+
+
+
+def best_values(run_dir: Path) -> dict[str, float]:
+    """The tuned values of the lowest-loss candidate a run folder's trace holds (a search started from
+    another's best).
+
+    Raises:
+        TuningError: the folder has no trace or no evaluated candidate.
+    """
+    from motion_studio.tuning.errors import TuningError
+
+    evaluations = [r for r in read_trace(Path(run_dir) / "trace.jsonl")
+                   if r["kind"] == "evaluation" and not r.get("failed")]
+    if not evaluations:
+        raise TuningError(f"{run_dir}: no evaluated candidate in its trace.jsonl")
+    return dict(min(evaluations, key=lambda r: r["loss"])["values"])
+__all__ = ["RUNS_DIR", "best_values", "default_run_dir", "draw_plots", "where_lines"]

@@ -177,6 +177,7 @@ def run(problem: Problem, make_optimizer: Callable[[Problem], Optimizer], run_di
     for index, record in enumerate(finished):
         best.offer(record["loss"], record["values"], record["result"], index)
     count = len(finished)
+    shown = {"best": best.entry["loss"]}  # the running best the progress bar shows
 
     def evaluate_batch(iteration: int, xs: list[np.ndarray]) -> tuple[list[Result], list[float]]:
         nonlocal count
@@ -192,16 +193,20 @@ def run(problem: Problem, make_optimizer: Callable[[Problem], Optimizer], run_di
             else:
                 todo.append(index)
 
+        told_indices: list[int] = []
+
         def told(position: int, result: Result) -> None:
             index = todo[position]
+            told_indices.append(index)
             loss, failed = checked_loss(problem, batch[index], result)
             results[index], losses[index] = result, loss
             record = {"kind": "evaluation", "iteration": iteration, "index": index, "x": list(map(float, xs[index])),
                       "values": batch[index], "loss": loss, "failed": failed, "result": result}
             writer.write(record)
             records.append(record)
+            shown["best"] = min(shown["best"], loss)
             if on_event is not None:
-                on_event(Event("evaluation", iteration, count + index + 1, min(best.entry["loss"], loss), loss))
+                on_event(Event("evaluation", iteration, count + len(told_indices), shown["best"], loss))
 
         backend.map(problem.evaluate, [batch[i] for i in todo], told)
         for index in range(len(xs)):

@@ -161,10 +161,10 @@ def test_tuning_on_a_backend_checkpoints_and_resumes(tmp_path):
 
     backends = [tune_kick.Backend("real", rollout, tune_kick.REAL_PLACEMENTS[:2])]
     dimension = [d for d in tune_kick.SPACE if d.name == "ball_ahead_m"]
-    checkpoint = tmp_path / "kick.json"
+    checkpoint = tmp_path / "kick"
     data = tune_kick.tune("kick", base, stance, dimension, tune_kick.Objective(), 2, checkpoint, popsize=4,
                           progress=lambda text: None, backends=backends)
-    assert len(data["evaluations"]) == 8 and checkpoint.is_file()
+    assert len(data["evaluations"]) == 8 and (checkpoint / "checkpoint.pkl").is_file()
     assert data["best"]["loss"] <= min(e["result"]["loss"] for e in data["evaluations"])
     assert all(r["backend"] == "real" for e in data["evaluations"] for r in e["result"]["runs"])
     again = tune_kick.tune("kick", base, stance, dimension, tune_kick.Objective(), 2, checkpoint, popsize=4,

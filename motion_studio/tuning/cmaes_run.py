@@ -1,0 +1,65 @@
+"""CMA-ES runs of the motion tuners (gait, kick, stand-up), and their results in the shape those tuners keep.
+
+Why here: each tuner used to carry its own loop; now each builds a :class:`Problem` and calls
+:func:`run_cmaes`, which gives the trace, checkpoint, resume, plots and the progress bar the same way for all.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+from motion_studio.tuning.backends import Backend
+from motion_studio.tuning.cma_es import CMAES
+from motion_studio.tuning.problem import Problem
+from motion_studio.tuning.progress import ProgressBar
+from motion_studio.tuning.run_folder import draw_plots, where_lines
+from motion_studio.tuning.runner import Event, RunResult, run
+
+
+def run_cmaes(problem: Problem, run_dir: Path, generations: int, sigma0: float, popsize: int | None = None,
+              seed: int = 0, backend: Backend | None = None, progress: Callable[[str], None] | None = print,
+              bar: bool = False, plots: bool = True, meta: dict[str, Any] | None = None) -> RunResult:
+    """CMA-ES on ``problem`` for ``generations`` iterations in ``run_dir`` (resumed if it holds a checkpoint).
+
+    Args:
+        progress: told one line per generation (None: silent) and, at the end, where the files are.
+        bar: show a progress bar (the CLI's choice).
+    """
+    def make(p: Problem) -> CMAES:
+        return CMAES(p.x0(), sigma0, popsize, seed, max_iterations=generations)
+
+    expected = 1 + generations * (popsize or CMAES(problem.x0(), sigma0, popsize, seed).popsize)
+
+    def line(event: Event) -> str:
+        return (f"{problem.name} generation {event.iteration + 1}/{generations}: min {event.loss:.4f} "
+                f"best {event.best_loss:.4f} ({event.evaluations} candidates)")
+
+    with ProgressBar(expected, problem.name, line if progress else None, disable=not bar) as on_event:
+        def told(event: Event) -> None:
+            on_event(event)
+            if progress and not bar and event.kind == "iteration":
+                progress(line(event))
+
+        result = run(problem, make, run_dir, backend, on_event=told, meta=meta)
+    if plots:
+        paths = draw_plots(result, problem)
+        for text in where_lines(result, paths):
+            if progress:
+                progress(text)
+    return result
+
+
+def legacy_data(result: RunResult, full: Callable[[dict[str, float]], dict[str, Any]],
+                key: str = "params") -> dict[str, Any]:
+    """``{"best": {"loss", key, "result"}, "evaluations": [{"generation", key, "result"}]}``: the shape the
+    tuners' callers and tests read; ``full`` turns tuned values into the whole parameter set."""
+    evaluations = [{"generation": r["iteration"] + 1, key: full(r["values"]), "result": r["result"]}
+                   for r in result.records if r["kind"] == "evaluation" and r["iteration"] >= 0]
+    best = result.best
+    return {"best": {"loss": best["loss"], key: full(best["values"]), "result": best["result"]},
+            "evaluations": evaluations, "run_dir": str(result.run_dir)}
+
+
+__all__ = ["legacy_data", "run_cmaes"]
