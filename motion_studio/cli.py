@@ -20,6 +20,7 @@ COMMAND_MODULES = (
     "motion_studio.commands.bench_kinematics",
     "motion_studio.commands.match",
     "motion_studio.commands.bench_sim",
+    "motion_studio.commands.bench_gym",
     "motion_studio.commands.agent",
     "motion_studio.commands.serve",
     "motion_studio.commands.edit",

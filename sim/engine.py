@@ -469,6 +469,8 @@ class SimEngine:
 
     def _vision_bytes(self, links: list[AgentLink]) -> dict[int, bytes]:
         """The See predicate of every robot that sees this cycle, written straight from the vision arrays."""
+        if not self.vision.enabled:
+            return {}
         seeing = [link for link in links if link.perceptor_cycles % VISION_INTERVAL == 0]
         if not seeing:
             return {}

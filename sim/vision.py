@@ -62,6 +62,9 @@ class VisionConfig:
     """The per-connection calibration offset (drawn by the caller; this only switches its use)."""
     lines: bool = True
     """Report field lines."""
+    enabled: bool = True
+    """Compute vision at all (False: no ``See`` in any message; training environments whose observation has
+    no vision skip a third of a cycle's cost)."""
 
 
 @dataclass(frozen=True)

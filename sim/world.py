@@ -396,6 +396,25 @@ class World:
         self._place_root(robot, (x_m, y_m, z_m), math.radians(heading_deg - 90.0))
         mujoco.mj_kinematics(self.model, self.data)
 
+    def reset_joints(self, key: int, angles_rad: np.ndarray | None = None) -> None:
+        """Put a robot's hinges at ``angles_rad`` (spec order; None: zero pose) with no motion or history.
+
+        For training resets (nao3d_gym): no trainer command sets joint angles, and an episode must not
+        inherit the last one's joint velocities, motor targets, solver warm start or accelerometer sample,
+        or the same seed would not give the same episode.
+        """
+        span = self.motors.span(key)
+        dof, qadr = self.motors.dof[span], self.motors.qadr[span]
+        self.data.qpos[qadr] = 0.0 if angles_rad is None else np.asarray(angles_rad, dtype=float)
+        self.data.qvel[dof] = 0.0
+        self.data.qacc_warmstart[:] = 0.0
+        self.motors.target[span] = 0.0
+        self.motors.frozen_until[span] = -np.inf
+        self.motors.reset_robot(key)
+        mujoco.mj_kinematics(self.model, self.data)
+        row = list(self.by_key).index(key)
+        self.velocity_samples[row] = self.data.qvel[self._root_lin][row]
+
     def torso_rotation(self, key: int) -> np.ndarray:
         """Torso orientation (3x3, columns = torso x right, y forward, z up in the world)."""
         robot = self.by_key[key]

@@ -8,14 +8,16 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
-ROOMS = ("kinematics", "motions", "agent", "sim", "motion_studio")
+ROOMS = ("kinematics", "motions", "agent", "sim", "nao3d_gym", "motion_studio")
 # DESIGN.md "Dependencies between rooms"; sim may use only agent.protocol from the agent room.
 ALLOWED = {
     "kinematics": set(),
     "motions": {"kinematics"},
     "agent": {"motions", "kinematics"},
     "sim": {"agent.protocol", "kinematics"},
-    "motion_studio": {"sim", "agent", "motions", "kinematics"},
+    # The Gymnasium environments (issue 16): the in-process world spoken to in the wire language.
+    "nao3d_gym": {"sim", "agent.protocol", "kinematics"},
+    "motion_studio": {"sim", "agent", "motions", "kinematics", "nao3d_gym"},
 }
 
 

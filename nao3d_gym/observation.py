@@ -1,0 +1,72 @@
+"""The observation vector of a Nao3D environment, read from a parsed sense message (what a real agent perceives).
+
+Only perceptors the robot has every cycle go in (REFERENCE §2.3, §3.4): hinge angles, gyro, accelerometer and
+the two foot pressure sensors. Vision (every third cycle, noisy) and hearing are left out so that every
+observation has the same meaning; a user who needs them reads the last raw message from ``env.unwrapped.last_sense``.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from agent.protocol.perceptors import Sense
+from kinematics.spec import JointSpec
+
+#: Foot pressure sensors of the Nao (REFERENCE §2.3), in observation order.
+FOOT_SENSORS = ("lf", "rf")
+#: Bounds of the clipped readings: a falling robot's gyro and accelerometer spike far past these, and the
+#: clip keeps every observation inside the space the checker and the learners see.
+GYRO_LIMIT_RAD_S = 50.0
+ACC_LIMIT_M_S2 = 200.0
+FOOT_POINT_LIMIT_M = 1.0
+FOOT_FORCE_LIMIT_N = 500.0
+_DEG = math.pi / 180.0
+
+
+def observation_names(joints: tuple[JointSpec, ...]) -> list[str]:
+    """One name per observation entry, with its unit (``hj1_rad`` ... ``gyr_x_rad_s`` ... ``rf_fz_n``)."""
+    names = [f"{j.perceptor}_rad" for j in joints]
+    names += [f"gyr_{axis}_rad_s" for axis in "xyz"] + [f"acc_{axis}_m_s2" for axis in "xyz"]
+    for sensor in FOOT_SENSORS:
+        names += [f"{sensor}_c{axis}_m" for axis in "xyz"] + [f"{sensor}_f{axis}_n" for axis in "xyz"]
+    return names
+
+
+def observation_bounds(joints: tuple[JointSpec, ...]) -> tuple[np.ndarray, np.ndarray]:
+    """(low, high) of the observation space: joint limits widened by 5 degrees (the stops give a little),
+    then the clip limits of the module constants."""
+    margin = 5.0
+    low = [math.radians(j.min_deg - margin) for j in joints]
+    high = [math.radians(j.max_deg + margin) for j in joints]
+    low += [-GYRO_LIMIT_RAD_S] * 3 + [-ACC_LIMIT_M_S2] * 3
+    high += [GYRO_LIMIT_RAD_S] * 3 + [ACC_LIMIT_M_S2] * 3
+    for _ in FOOT_SENSORS:
+        low += [-FOOT_POINT_LIMIT_M] * 3 + [-FOOT_FORCE_LIMIT_N] * 3
+        high += [FOOT_POINT_LIMIT_M] * 3 + [FOOT_FORCE_LIMIT_N] * 3
+    return np.array(low, dtype=np.float32), np.array(high, dtype=np.float32)
+
+
+class ObservationReader:
+    """Writes a `Sense` into a float32 vector laid out as `observation_names`.
+
+    Args:
+        joints: the robot type's hinges (``kinematics.spec.robot_spec(t).joints``), in observation order.
+    """
+
+    def __init__(self, joints: tuple[JointSpec, ...]) -> None:
+        self.perceptors = tuple(j.perceptor for j in joints)
+        self.low, self.high = observation_bounds(joints)
+        self.size = self.low.size
+
+    def read(self, sense: Sense) -> np.ndarray:
+        """The observation of one sense message (a new array: learners keep references to it)."""
+        values: list[float] = [sense.joints.get(name, 0.0) * _DEG for name in self.perceptors]
+        gyro, acc = sense.gyro, sense.acc
+        values += [v * _DEG for v in gyro.rate_deg_s] if gyro is not None else [0.0, 0.0, 0.0]
+        values += list(acc.acc_m_s2) if acc is not None else [0.0, 0.0, 0.0]
+        for name in FOOT_SENSORS:
+            foot = sense.frp.get(name)
+            values += [*foot.contact_m, *foot.force_n] if foot is not None else [0.0] * 6
+        return np.clip(np.array(values, dtype=np.float32), self.low, self.high)
