@@ -8,7 +8,7 @@ from typing import Any
 
 from tqdm import tqdm
 
-from motion_studio.match_agents import make_agent
+from motion_studio.match_agents import SideAgents
 from motion_studio.match_settings import MatchSettings, prepare_folder
 from sim.match import MatchConfig, run_match
 from sim.match_batch import append_result, batch_configs, finished_ids, read_results, run_batch
@@ -17,7 +17,8 @@ from sim.ray_executor import RayExecutor
 
 def run_and_report(*, players: int, duration_s: float, matches: int, workers: int, seed: int, out: Path,
                    log: bool, team_left: str, team_right: str, resume: bool,
-                   ray_address: str | None = None) -> tuple[list[str], list[dict]]:
+                   ray_address: str | None = None, left: str = "ours",
+                   right: str = "ours") -> tuple[list[str], list[dict]]:
     """Play the matches (one with a live game-time bar, a batch with a per-match bar); return report lines.
 
     With ``ray_address`` the batch runs as Ray tasks (`sim.ray_executor`); the checkpoint stays here."""
@@ -37,7 +38,7 @@ def run_and_report(*, players: int, duration_s: float, matches: int, workers: in
         finally:
             executor.shutdown()
     elif matches == 1 and workers <= 1:
-        results = _single(configs[0], checkpoint)
+        results = _single(configs[0], checkpoint, make_agent)
     else:
         with tqdm(total=len(configs), desc="matches", unit="match") as bar:
             results = run_batch(configs, make_agent, checkpoint, workers, on_result=lambda _: bar.update(1))
@@ -45,7 +46,7 @@ def run_and_report(*, players: int, duration_s: float, matches: int, workers: in
     return summary_lines(results) + [f"results: {checkpoint}", f"plot: {plot}"], results
 
 
-def _single(config: MatchConfig, checkpoint: Path) -> list[dict[str, Any]]:
+def _single(config: MatchConfig, checkpoint: Path, make_agent: SideAgents) -> list[dict[str, Any]]:
     """One match in this process, so the bar can follow its game time; checkpointed like a batch."""
     if config.match_id not in finished_ids(checkpoint):
         with tqdm(total=round(config.duration_s), desc="game time", unit="s") as bar:

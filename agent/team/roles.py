@@ -23,8 +23,10 @@ from agent.world_model import WorldModel
 ANGLE_WEIGHT_M_PER_DEG = 0.01
 #: Cost bonus of the current holder [m] (REFERENCE §7.10).
 HOLDER_BONUS_M = 1.0
-#: A teammate's report older than this is not used [s] (a full say round of 11 players is 0.66 s, §7.9).
-REPORT_FRESH_S = 3.0
+#: A teammate's report older than this is not used [s]: a full say round of 11 players is 0.66 s (§7.9), so a
+#: teammate that fell silent (taken off, crashed) loses the ball to the next player within 1 s (issue 15; with
+#: 3 s its teammates kept "hearing" a striker that had been taken off at the ball).
+REPORT_FRESH_S = 0.9
 #: The own ball sighting is used while younger than this [s]; else a teammate's (c) report.
 BALL_FRESH_S = 2.0
 #: Opponent goal centre, team frame [m] (field 30 × 20, REFERENCE §4).

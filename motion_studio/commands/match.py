@@ -22,6 +22,8 @@ def match(
     seed: Annotated[int, typer.Option(min=0, help="first seed")] = 0,
     out: Annotated[Path, typer.Option(help="output folder: results.jsonl (checkpoint), logs, plot")] = Path("out/match"),
     log: Annotated[bool, typer.Option(help="write a SimSpark monitor log per match")] = True,
+    left: Annotated[str, typer.Option(help="left team: ours, baseline or standing (robots that only stand)")] = "ours",
+    right: Annotated[str, typer.Option(help="right team: ours, baseline or standing")] = "ours",
     team_left: Annotated[str, typer.Option()] = "Left",
     team_right: Annotated[str, typer.Option()] = "Right",
     resume: Annotated[bool, typer.Option(help="keep finished matches of an earlier run of the same folder")] = True,
@@ -29,12 +31,22 @@ def match(
 ) -> None:
     """Play matches with our agents and motions; results go to OUT/results.jsonl as each match ends."""
     from motion_studio.match_report import run_and_report
+    from motion_studio.match_agents import check_kind
     from sim.ray_executor import RayUnavailable
 
+    for kind in (left, right):
+        try:
+            check_kind(kind)
+        except ValueError as error:
+            typer.echo(f"error: {error}", err=True)
+            raise typer.Exit(2) from None
+        if kind.startswith("cmd:"):
+            typer.echo("error: external agent commands (cmd:) are not supported yet", err=True)
+            raise typer.Exit(2)
     try:
         lines, results = run_and_report(players=players, duration_s=duration, matches=matches, workers=workers,
                                         seed=seed, out=out, log=log, team_left=team_left, team_right=team_right,
-                                        resume=resume, ray_address=ray)
+                                        resume=resume, ray_address=ray, left=left, right=right)
     except RayUnavailable as error:  # say so, no traceback
         typer.echo(f"error: {error}", err=True)
         raise typer.Exit(2) from None

@@ -105,6 +105,8 @@ def match(
     connect_gap: Annotated[int, typer.Option(min=0, max=1000,
         help="cycles each agent plays before the next connects (in-process real match)")] = 3,
     only: Annotated[Optional[str], typer.Option(help="play one of the two matches only: real or ours")] = None,
+    left: Annotated[str, typer.Option(help="left team: ours, baseline or standing")] = "ours",
+    right: Annotated[str, typer.Option(help="right team: ours, baseline or standing")] = "ours",
     out: Annotated[Path, typer.Option(help="logs")] = Path("out/real_match_check"),
     json_path: Annotated[Optional[Path], typer.Option("--json", help="also write the figures as JSON")] = None,
     real_server_dir: ServerDir = None,
@@ -123,15 +125,20 @@ def match(
     except ValueError:
         _fail("match", f"--types must be robot types separated by commas, got {types!r}")
     scripts = _into_netns("match", real_server_dir) if only != "ours" else None
+    for kind in (left, right):
+        if kind not in ("ours", "baseline", "standing"):
+            _fail("match", f"--left/--right must be ours, baseline or standing, got {kind!r}")
     if code != "worktree":
-        _play_revision(code, players, duration, seed, kick_off, types, cli, connect_gap, only, out, json_path)
+        _play_revision(code, players, duration, seed, kick_off, types, cli, connect_gap, only, out, json_path,
+                       left, right)
         return
-    setup = MatchSetup(players, duration, robot_types, connect_gap)
+    setup = MatchSetup(players, duration, robot_types, connect_gap, left, right)
     _play(setup, seed, code_label or "worktree", kick_off, cli, only, scripts, out, json_path)
 
 
 def _play_revision(code: str, players: int, duration: float, seed: int, kick_off: str, types: str | None, cli: bool,
-                   connect_gap: int, only: str | None, out: Path, json_path: Path | None) -> None:
+                   connect_gap: int, only: str | None, out: Path, json_path: Path | None, left: str = "ours",
+                   right: str = "ours") -> None:
     """The match with the code of a git revision: exported into a temporary folder and run there by a child
     process (``python -m motion_studio real match --code worktree``)."""
     from motion_studio.realserver.git_export import export_revision, short_revision
@@ -148,6 +155,7 @@ def _play_revision(code: str, players: int, duration: float, seed: int, kick_off
             str(duration), "--seed", str(seed), "--code", "worktree", "--code-label", short, "--kick-off", kick_off,
             "--connect-gap", str(connect_gap), "--out", str(out.resolve())]
     argv += ["--types", types] if types else []
+    argv += ["--left", left, "--right", right] if (left, right) != ("ours", "ours") else []
     argv += ["--cli"] if cli else []
     argv += ["--only", only] if only else []
     argv += ["--json", str(json_path.resolve())] if json_path else []

@@ -153,6 +153,10 @@ class MatchSetup:
     duration_s: float = 120.0
     types: tuple[int, ...] | None = None
     connect_gap_cycles: int = CONNECT_GAP_CYCLES
+    left: str = "ours"
+    """The left team's kind (``motion_studio.match_agents.TEAM_KINDS``: ours, baseline, standing)."""
+    right: str = "ours"
+    """The right team's kind."""
 
 
 def lineup(setup: MatchSetup) -> list[tuple[str, int, int]]:
@@ -171,6 +175,13 @@ def _soccer(team: str, unum: int, robot_type: int) -> Any:
     from motion_studio.match_agents import make_agent
 
     return make_agent(team, unum, robot_type)
+
+
+def _side_factory(setup: MatchSetup) -> Any:
+    """The agent factory of the setup's two team kinds (sides told apart by team name)."""
+    from motion_studio.match_agents import SideAgents
+
+    return SideAgents(setup.left, setup.right, LEFT_TEAM)
 
 
 class LogCounter(logging.Handler):
@@ -223,8 +234,9 @@ def run_real(setup: MatchSetup, kick_off: str, scripts: Path, out: Path) -> Play
     try:
         time.sleep(1.0)
         monitor = MonitorLink()
+        factory = _side_factory(setup)
         for team, unum, robot_type in lineup(setup):
-            watched = Watched(_soccer, team, unum, robot_type, catch_protocol=False)
+            watched = Watched(factory, team, unum, robot_type, catch_protocol=False)
             config = AgentConfig(team=team, unum=unum, robot_type=robot_type)
 
             def play(watched: Watched = watched, config: AgentConfig = config) -> None:
@@ -360,8 +372,10 @@ def run_ours(setup: MatchSetup, seed: int, out: Path) -> Played:
     players, duration_s = setup.players, setup.duration_s
     agents: list[Watched] = []
 
+    factory = _side_factory(setup)
+
     def make(team: str, unum: int, robot_type: int) -> Watched:
-        watched = Watched(_soccer, team, unum, robot_type, catch_protocol=True)
+        watched = Watched(factory, team, unum, robot_type, catch_protocol=True)
         agents.append(watched)
         return watched
 
