@@ -16,6 +16,7 @@ from __future__ import annotations
 import argparse
 import logging
 import math
+import os
 import socket
 import sys
 import threading
@@ -24,6 +25,8 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 from agent.agent import Agent, AgentConfig
+from agent.drawing.udp import DEFAULT_DRAW_HOST, DEFAULT_DRAW_PORT, RoboVizDrawer, drawer_from_env
+from agent.drawing.udp import ENV_VAR as DRAW_ENV_VAR
 from agent.player import BEHAVIORS, DEFAULT_BEHAVIOR, agent_factory
 from agent.errors import ConfigError, ServerUnreachable
 from agent.localization import DEFAULT_LOCALIZER, LOCALIZERS
@@ -108,8 +111,9 @@ def status_line(agent: Agent) -> str:
             f"teammates heard {heard}, last said {agent.said[-1] if agent.said else '-'}")
 
 
-def serve(sock: socket.socket, agent: Agent, stats: RunStats, stop: threading.Event | None = None) -> None:
-    """Play one connection until the server closes it or ``stop`` is set.
+def serve(sock: socket.socket, agent: Agent, stats: RunStats, stop: threading.Event | None = None,
+          drawer: RoboVizDrawer | None = None) -> None:
+    """Play one connection until the server closes it or ``stop`` is set (drawing to RoboViz with ``drawer``).
 
     Raises:
         OSError: the socket failed or timed out.
@@ -128,14 +132,17 @@ def serve(sock: socket.socket, agent: Agent, stats: RunStats, stop: threading.Ev
             reply = SYN_ONLY
         stats.cycles += 1
         write_frame(sock, reply)
+        if drawer is not None:   # after the answer: drawing never delays the server
+            drawer.draw(agent)
         if stats.cycles % STATUS_EVERY_CYCLES == 0:
             logger.info("%s", status_line(agent))
 
 
 def run(config: AgentConfig, host: str = DEFAULT_HOST, port: int = DEFAULT_PORT,
         policy: ConnectionPolicy | None = None, stop: threading.Event | None = None,
-        make_agent: Callable[[AgentConfig], Agent] = Agent) -> RunStats:
-    """Connect and play until the server goes away for good or ``stop`` is set.
+        make_agent: Callable[[AgentConfig], Agent] = Agent, drawer: RoboVizDrawer | None = None) -> RunStats:
+    """Connect and play until the server goes away for good or ``stop`` is set; ``drawer`` draws the
+    agent's beliefs in RoboViz (off when None).
 
     Raises:
         ServerUnreachable: no server at the start, or none came back after a lost connection.
@@ -155,7 +162,7 @@ def run(config: AgentConfig, host: str = DEFAULT_HOST, port: int = DEFAULT_PORT,
                     config.robot_type)
         try:
             with sock:
-                serve(sock, agent, stats, stop)
+                serve(sock, agent, stats, stop, drawer)
             reason = "closed by the server"
         except (OSError, ProtocolError) as error:
             reason = str(error) or type(error).__name__
@@ -196,6 +203,11 @@ def build_parser() -> argparse.ArgumentParser:
                              f"beams, localizes and talks (default {DEFAULT_BEHAVIOR})")
     parser.add_argument("--attempts", type=int, default=ConnectionPolicy.connect_attempts,
                         help="connection attempts before giving up (default 5)")
+    parser.add_argument("--roboviz-draw", nargs="?", const=f"{DEFAULT_DRAW_HOST}:{DEFAULT_DRAW_PORT}", default=None,
+                        metavar="HOST:PORT",
+                        help=f"draw the agent's beliefs, target and role in RoboViz over UDP (default off; the "
+                             f"flag alone sends to {DEFAULT_DRAW_HOST}:{DEFAULT_DRAW_PORT}; the environment "
+                             f"variable {DRAW_ENV_VAR}=HOST:PORT turns it on too)")
     parser.add_argument("--log-level", default="INFO", help="logging level (default INFO)")
     return parser
 
@@ -206,16 +218,22 @@ def main(argv: Sequence[str] | None = None) -> int:
     logging.basicConfig(level=args.log_level.upper(), format="%(asctime)s %(levelname)s %(name)s: %(message)s")
     robot_type = robot_type_for(args.unum) if args.robot_type == "auto" else args.robot_type
     return run_cli(args.host, args.port, args.team, args.unum, robot_type, args.localization, args.attempts,
-                   args.behavior)
+                   args.behavior, args.roboviz_draw)
 
 
 def run_cli(host: str, port: int, team: str, unum: int, robot_type: int, localization: str = DEFAULT_LOCALIZER,
-            attempts: int = ConnectionPolicy.connect_attempts, behavior: str = DEFAULT_BEHAVIOR) -> int:
-    """Run with user-facing error handling: a clear message on stderr and a non-zero code on failure."""
+            attempts: int = ConnectionPolicy.connect_attempts, behavior: str = DEFAULT_BEHAVIOR,
+            roboviz_draw: str | None = None) -> int:
+    """Run with user-facing error handling: a clear message on stderr and a non-zero code on failure.
+
+    ``roboviz_draw``: RoboViz's HOST:PORT for belief drawings (None: ``NAO3D_ROBOVIZ_DRAW``, else off)."""
     try:
         config = AgentConfig(team=team, unum=unum, robot_type=robot_type, localization=localization)
+        drawer = drawer_from_env(os.environ, roboviz_draw)
+        if drawer is not None:
+            logger.info("drawing beliefs to RoboViz at %s:%d (UDP)", *drawer.address)
         stats = run(config, host, port, ConnectionPolicy(connect_attempts=max(1, attempts)),
-                    make_agent=agent_factory(behavior))
+                    make_agent=agent_factory(behavior), drawer=drawer)
     except ConfigError as error:
         print(f"agent: bad option {error.field}: {error}", file=sys.stderr)
         return 2
