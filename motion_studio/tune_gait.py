@@ -32,7 +32,7 @@ import numpy as np
 from agent.motion import MotionLibrary
 from kinematics.errors import IKError
 from motion_studio.tuning import Parameter, Problem, make_backend
-from motion_studio.tuning.cmaes_run import legacy_data, run_cmaes
+from motion_studio.tuning.session import legacy_data, run_cmaes
 from motion_studio.tuning.params_file import Provenance, write_file
 from motion_studio.tuning.run_folder import default_run_dir
 from motion_studio.walk_rollout import Push, WalkRun, run_walk

@@ -51,7 +51,7 @@ from agent.motion import MotionLibrary
 from kinematics.errors import IKError
 from motion_studio.kick_rollout import KickRun, Placement, run_kick
 from motion_studio.tuning import InProcess, Parameter, Problem, TuningError, make_backend, subset
-from motion_studio.tuning.cmaes_run import legacy_data, run_cmaes
+from motion_studio.tuning.session import legacy_data, run_cmaes
 from motion_studio.tuning.params_file import Provenance, toml_value, write_sections
 from motion_studio.tuning.run_folder import best_values, default_run_dir
 from motions.authoring.gait import GaitParams, build_stance

@@ -1,49 +1,39 @@
 """Tune the walk-lean curve (``[walk_lean]`` of ``motions/params/dynamic_elements.toml``) on our simulator.
 
-The shipped ``walk_forward`` plays at full lean left and right (and half lean left) from a standstill;
-the loss rewards the weaker side's curvature [deg/m] (up to a cap: a lean steers, it does not turn in
-place), a half lean that curves about half as much, and keeping the speed, and punishes falls hard. Searched:
-the offsets of the swing leg's hip yaw-pitch (le1), hip pitch (le3) and ankle pitch (le5) at a full lean.
+Default (``--optimizer casadi``): the curve problem of ``motion_studio.lean_problem`` (full-lean offsets of the
+swing leg's hip yaw-pitch and hip pitch, and the command curve: curvature linear in the request over [-1, 1],
+no fall, at most 10 % speed loss) solved by the CasADi/IPOPT trust region of the tuning room on rollouts;
+``--optimizer cmaes`` solves the same problem with CMA-ES, ``--compare`` runs both on one budget.
+
+``--scan`` keeps the first method: evaluate given offset sets (full lean left/right, half lean left,
+straight) and keep the one with the best of the old score (weaker side's curvature, speed, falls).
 
 Run::
 
-    python -m motion_studio.tune_lean --generations 15 --write
-
-Checkpoints to ``/tmp/nao3d-tune/walk_lean.json`` after every generation and resumes from it.
+    motion-studio tune lean --evaluations 60 --workers 2
+    motion-studio tune lean --scan "le1=-2.5;le1=-3" --write
 """
 
 from __future__ import annotations
 
 import argparse
-import datetime
 import json
-import time
 from dataclasses import replace
 from pathlib import Path
 
-import numpy as np
-
 from agent.motion import default_library, load_dynamic_params
-from agent.motion.dynamic import DEFAULT_PARAMS_PATH, DynamicParams, save_dynamic_params
-from motion_studio.cmaes import CMAES
+from agent.motion.dynamic import DEFAULT_PARAMS_PATH, DynamicParams, WalkLean
+from motion_studio.lean_problem import (COMMANDS, QUICK_COMMANDS, QUICK_WALK_S, TARGET_DEG_M, WALK_S, lean_curve,
+                                        lean_problem)
+from motion_studio.tuning import make_backend
+from motion_studio.tuning.params_file import Provenance, section_text, write_sections
+from motion_studio.tuning.run_folder import default_run_dir
+from motion_studio.tuning.session import OPTIMIZERS, run_optimizer
 from motion_studio.walk_rollout import run_walk
 
-#: Searched offsets [deg] and bounds.
-BOUNDS = {"le1": (-5.0, 0.0), "le3": (-2.0, 2.0), "le5": (-2.0, 2.0)}
-#: Curvature beyond this earns nothing more [deg/m].
+#: Curvature beyond this earns nothing more in the scan's score [deg/m].
 CURVATURE_CAP_DEG_M = 40.0
 TRIAL_S = 10.0
-CHECKPOINT = Path("/tmp/nao3d-tune/walk_lean.json")
-
-
-def file_header(path: Path = DEFAULT_PARAMS_PATH) -> str:
-    """The leading comment block of the parameter file (kept when the section is rewritten)."""
-    lines = []
-    for line in path.read_text(encoding="utf-8").splitlines():
-        if not line.startswith("#"):
-            break
-        lines.append(line[1:].removeprefix(" "))
-    return "\n".join(lines)
 
 
 def with_offsets(dynamic: DynamicParams, offsets: dict[str, float]) -> DynamicParams:
@@ -65,6 +55,7 @@ def lean_figures(dynamic: DynamicParams, duration_s: float = TRIAL_S) -> dict[st
 
 
 def loss(figures: dict[str, float]) -> float:
+    """The scan's score (lower is better): the weaker side's curvature, half lean half as much, speed, falls."""
     left = figures["left_curvature_deg_m"] - figures["straight_curvature_deg_m"]
     right = figures["straight_curvature_deg_m"] - figures["right_curvature_deg_m"]
     half = figures["half_curvature_deg_m"] - figures["straight_curvature_deg_m"]
@@ -74,79 +65,95 @@ def loss(figures: dict[str, float]) -> float:
     return -(weaker - 0.3 * abs(half - left / 2) + 10.0 * speed) + 100.0 * falls
 
 
+def scan(base: DynamicParams, spec: str) -> tuple[WalkLean, str]:
+    """``--scan``: the best of the given offset sets by :func:`loss`, and its note for the provenance."""
+    best: dict = {"loss": float("inf")}
+    for item in spec.split(";"):
+        offsets = {"le1": 0.0, "le3": 0.0, "le5": 0.0}
+        offsets.update({k.strip(): float(v) for k, v in (pair.split("=") for pair in item.split(","))})
+        figures = lean_figures(with_offsets(base, offsets))
+        value = loss(figures)
+        print(f"{offsets} loss {value:.2f} {figures}", flush=True)
+        if value < best["loss"]:
+            best = {"loss": value, "offsets": offsets, "figures": figures}
+    figures = best["figures"]
+    note = (f"scan: full lean curvature left {figures['left_curvature_deg_m']} deg/m, right "
+            f"{figures['right_curvature_deg_m']} deg/m, half left {figures['half_curvature_deg_m']} deg/m, straight "
+            f"{figures['straight_curvature_deg_m']} deg/m in 10 s runs of walk_forward")
+    return with_offsets(base, best["offsets"]).walk_lean, note
+
+
+def write_lean(curve: WalkLean, path: Path = DEFAULT_PARAMS_PATH) -> None:
+    """Rewrite ``[walk_lean]`` of ``path`` through the tuning room's writer (it must load back to ``curve``)."""
+    def check(written: Path) -> None:
+        loaded = load_dynamic_params(written).walk_lean
+        if loaded != curve:
+            raise ValueError(f"[walk_lean] reads back as {loaded}, expected {curve}")
+
+    values = {"joint_offsets_deg": dict(curve.joint_offsets_deg), "speed_points_m_s": list(curve.speed_points_m_s),
+              "speed_scale": list(curve.speed_scale), "phase_points": list(curve.phase_points),
+              "phase_scale": list(curve.phase_scale), "provenance": curve.provenance}
+    if curve.command_points:
+        values.update(command_points=list(curve.command_points), command_scale=list(curve.command_scale))
+    write_sections(path, {"walk_lean": section_text("walk_lean", values)}, check)
+
+
 def main(argv: list[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(prog="python -m motion_studio.tune_lean", description=__doc__.split("\n\n")[0])
-    parser.add_argument("--generations", type=int, default=15)
-    parser.add_argument("--popsize", type=int, default=8)
-    parser.add_argument("--checkpoint", type=Path, default=CHECKPOINT)
-    parser.add_argument("--write", action="store_true", help="write the best offsets into dynamic_elements.toml")
+    parser = argparse.ArgumentParser(prog="motion-studio tune lean", description=__doc__.split("\n\n")[0],
+                                     formatter_class=argparse.ArgumentDefaultsHelpFormatter)
+    parser.add_argument("--optimizer", choices=OPTIMIZERS, default="casadi",
+                        help="casadi: trust region with IPOPT; cmaes: CMA-ES on the same problem")
+    parser.add_argument("--evaluations", type=int, default=60, help="candidates at most")
+    parser.add_argument("--quick", action="store_true",
+                        help=f"requests +-{QUICK_COMMANDS} and {QUICK_WALK_S:g} s walks (instead of +-{COMMANDS}, "
+                             f"{WALK_S:g} s)")
+    parser.add_argument("--target-deg-m", type=float, default=TARGET_DEG_M,
+                        help="curvature wanted at a full lean [deg/m] (linear in the request)")
+    parser.add_argument("--compare", action="store_true",
+                        help="run both optimizers on one budget and print rollouts to CMA-ES's final objective")
+    parser.add_argument("--run-dir", type=Path, default=None, help="run folder (default out/tuning/walk_lean_<optimizer>)")
+    parser.add_argument("--workers", type=int, default=1, help="local processes for the rollouts")
+    parser.add_argument("--ray-address", default=None, help="run the rollouts on this Ray cluster ('local': a new one)")
+    parser.add_argument("--seed", type=int, default=0, help="seed of CMA-ES")
     parser.add_argument("--scan", default=None,
-                        help='evaluate these offset sets instead of CMA-ES, e.g. "le1=-2;le1=-3,le3=1"')
+                        help='evaluate these offset sets instead (the first method), e.g. "le1=-2;le1=-3,le3=1"')
+    parser.add_argument("--write", action="store_true", help="write the tuned curve into [walk_lean]")
+    parser.add_argument("--params", type=Path, default=DEFAULT_PARAMS_PATH, help="dynamic elements file")
     args = parser.parse_args(argv)
-    base = load_dynamic_params()
-    names = list(BOUNDS)
+    base = load_dynamic_params(args.params)
     if args.scan:
-        data = {"best": {"loss": float("inf")}, "evaluations": []}
-        for spec in args.scan.split(";"):
-            offsets = {n: 0.0 for n in names}
-            offsets.update({k.strip(): float(v) for k, v in (item.split("=") for item in spec.split(","))})
-            figures = lean_figures(with_offsets(base, offsets))
-            value = loss(figures)
-            data["evaluations"].append({"offsets": offsets, "loss": value, "figures": figures})
-            print(f"{offsets} loss {value:.2f} {figures}", flush=True)
-            if value < data["best"]["loss"]:
-                data["best"] = {"loss": value, "offsets": offsets, "figures": figures}
-        args.generations = 0
-        method = f'--scan "{args.scan}"'
+        curve, note = scan(base, args.scan)
     else:
-        method = f"--generations {args.generations}"
-    low = np.array([BOUNDS[n][0] for n in names])
-    span = np.array([BOUNDS[n][1] - BOUNDS[n][0] for n in names])
-    if args.scan:
-        strategy = CMAES.create(np.full(len(names), 0.5))
-    elif args.checkpoint.is_file():
-        data = json.loads(args.checkpoint.read_text())
-        strategy = CMAES.from_state(data["cmaes"])
-    else:
-        start = np.array([base.walk_lean.joint_offsets_deg.get(n, 0.0) for n in names])
-        strategy = CMAES.create(np.clip((start - low) / span, 0, 1), 0.25, args.popsize)
-        figures = lean_figures(base)
-        data = {"best": {"loss": loss(figures), "offsets": dict(zip(names, start.tolist())), "figures": figures},
-                "evaluations": []}
-        print(f"base {data['best']}", flush=True)
-    args.checkpoint.parent.mkdir(parents=True, exist_ok=True)
-    while strategy.generation < args.generations:
-        started = time.monotonic()
-        losses = []
-        for x in strategy.ask():
-            offsets = dict(zip(names, (low + x * span).round(2).tolist()))
-            figures = lean_figures(with_offsets(base, offsets))
-            value = loss(figures)
-            losses.append(value)
-            data["evaluations"].append({"offsets": offsets, "loss": value, "figures": figures})
-            if value < data["best"]["loss"]:
-                data["best"] = {"loss": value, "offsets": offsets, "figures": figures}
-        strategy.tell(losses)
-        data["cmaes"] = strategy.state()
-        args.checkpoint.write_text(json.dumps(data))
-        print(f"gen {strategy.generation} {time.monotonic() - started:.0f}s min {min(losses):.2f} best {data['best']}",
-              flush=True)
-    best = data["best"]
-    print(f"best {best}")
+        commands = QUICK_COMMANDS if args.quick else COMMANDS
+        problem = lean_problem(base, commands, QUICK_WALK_S if args.quick else WALK_S, args.target_deg_m)
+        backend = make_backend("inprocess", args.workers, args.ray_address)
+        try:
+            if args.compare:
+                from motion_studio.tuning.compare import compare
+
+                comparison = compare(problem, args.run_dir or default_run_dir("walk_lean_compare"), args.evaluations,
+                                     min_radius=0.02, seed=args.seed, backend=backend)
+                print(json.dumps(comparison.table()))
+                result = comparison.casadi
+            else:
+                result = run_optimizer(problem, args.optimizer, args.run_dir or default_run_dir(
+                    "walk_lean", args.optimizer), args.evaluations, min_radius=0.02, seed=args.seed,
+                    backend=backend, bar=True)
+        finally:
+            backend.close()
+        figures = result.best["result"]
+        speeds = [v for k, v in figures.items() if k.startswith("speed_ratio_")]
+        note = (f"{args.optimizer} on our simulator ({result.rollouts} rollouts of walk_forward): curvature within "
+                f"{figures.get('curvature_error_max_deg_m', float('nan')):.2f} deg/m of {args.target_deg_m:g} x request "
+                f"at +-{list(commands)}, speed ratio min {min(speeds, default=float('nan')):.3f}, falls "
+                f"{figures.get('falls')}")
+        curve = lean_curve(base.walk_lean, result.best["values"], commands)
+        print(f"best: {json.dumps(result.best['values'])}")
+        print(f"figures: {json.dumps({k: round(v, 3) if isinstance(v, float) else v for k, v in figures.items()})}")
+    curve = replace(curve, provenance=Provenance.now().text(note))
     if args.write:
-        figures = best["figures"]
-        lean = replace(with_offsets(base, best["offsets"]).walk_lean, provenance=(
-            f"python -m motion_studio.tune_lean {method} on {datetime.date.today()}: "
-            f"full lean curvature left {figures['left_curvature_deg_m']} deg/m, right "
-            f"{figures['right_curvature_deg_m']} deg/m, half left {figures['half_curvature_deg_m']} deg/m, "
-            f"straight {figures['straight_curvature_deg_m']} deg/m, falls "
-            f"{int(sum(figures[k + '_fell'] for k in ('left', 'half', 'straight', 'right')))} in four 10 s runs of "
-            f"walk_forward; "
-            f"offsets act on the swing leg (motions.authoring.gait lean names)"))
-        # Re-read now: other tuners rewrite their own sections of the same file.
-        current = load_dynamic_params()
-        save_dynamic_params(replace(current, walk_lean=lean), DEFAULT_PARAMS_PATH, file_header())
-        print(DEFAULT_PARAMS_PATH)
+        write_lean(curve, args.params)
+        print(f"wrote [walk_lean] of {args.params}")
     return 0
 
 

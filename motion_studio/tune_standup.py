@@ -48,7 +48,7 @@ from agent.motion import MotionController, MotionLibrary, default_library, load_
 from agent.skills.base import PlayMotion
 from motion_studio.scenarios import Scenario
 from motion_studio.tuning import BatchBackend, Parameter, Problem, make_backend
-from motion_studio.tuning.cmaes_run import run_cmaes
+from motion_studio.tuning.session import run_cmaes
 from motion_studio.tuning.params_file import Provenance, write_file
 from motion_studio.tuning.run_folder import default_run_dir
 from motions.authoring.standup import (PARAMS_PATH, STANDUPS, GroundPose, StandUpParams, build_standup,

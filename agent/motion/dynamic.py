@@ -65,10 +65,17 @@ class WalkLean:
     phase_scale: tuple[float, ...] = (1.0, 1.0)
     """Scale of the offsets at those positions."""
     provenance: str = ""
+    command_points: tuple[float, ...] = ()
+    """Lean request magnitudes (0..1) of the command curve; empty: the offsets grow linearly with the request."""
+    command_scale: tuple[float, ...] = ()
+    """Share of the full-lean offsets at those magnitudes (the same for both sides: the curve is odd in the
+    request). Tuned so the curvature, not the offset, is linear in the request (motion_studio.tune_lean)."""
 
     def __post_init__(self) -> None:
         _check_curve("walk_lean speed curve", self.speed_points_m_s, self.speed_scale)
         _check_curve("walk_lean phase curve", self.phase_points, self.phase_scale)
+        if self.command_points or self.command_scale:
+            _check_curve("walk_lean command curve", self.command_points, self.command_scale)
 
     def offset_deg(self, computed_name: str, lean: float, speed_m_s: float = 0.0, phase: float = 0.0) -> float | None:
         """Offset [deg] for a computed value called ``computed_name``; None if the name is no walk lean.
@@ -87,6 +94,8 @@ class WalkLean:
         amount = lean if side == "left" else -lean
         if amount <= 0.0:
             return 0.0
+        if self.command_points:
+            amount = piecewise_linear(amount, self.command_points, self.command_scale)
         offset = self.joint_offsets_deg.get(kind, 0.0)
         return (offset * amount * piecewise_linear(speed_m_s, self.speed_points_m_s, self.speed_scale)
                 * piecewise_linear(phase, self.phase_points, self.phase_scale))
@@ -128,10 +137,26 @@ class TurnGain:
     predicted_slope_deg: float = 46.0
     """Extra turn from the smallest gain to gain 1 [deg]."""
     provenance: str = ""
+    request_points_deg: tuple[float, ...] = ()
+    """Requested turns of one motion [deg] of a tuned monotone curve (with ``curve_gains``); empty: the line
+    of ``offset_deg`` and ``span_deg`` above. Beyond the last point the gain stays at the last one, and the
+    last point is the largest turn one motion is asked for (motion_studio.tune_turn)."""
+    curve_gains: tuple[float, ...] = ()
+    """Gain at each of ``request_points_deg``, strictly increasing (so the curve inverts: the prediction)."""
 
     def __post_init__(self) -> None:
         if not 0.0 < self.min_gain <= 1.0 or self.span_deg <= 0.0:
             raise ValueError(f"turn gain needs 0 < min_gain <= 1 and span_deg > 0, got {self.min_gain}, {self.span_deg}")
+        if self.request_points_deg or self.curve_gains:
+            _check_curve("turn_gain curve", self.request_points_deg, self.curve_gains)
+            if len(self.curve_gains) < 2 or any(b <= a for a, b in zip(self.curve_gains, self.curve_gains[1:])):
+                raise ValueError(f"turn_gain curve_gains must increase strictly, got {list(self.curve_gains)}")
+            if not (0.0 < self.curve_gains[0] and self.curve_gains[-1] <= 1.0):
+                raise ValueError(f"turn_gain curve_gains must lie in (0, 1], got {list(self.curve_gains)}")
+            if self.min_gain != self.curve_gains[0]:
+                # the turn skills take the smallest turn from min_gain
+                raise ValueError(f"turn_gain min_gain {self.min_gain} must be the curve's first gain "
+                                 f"{self.curve_gains[0]}")
 
     def gain(self, turn_deg: float) -> float:
         """Gain for a requested turn of ``turn_deg`` (sign ignored: the motion's side gives the direction).
@@ -139,11 +164,15 @@ class TurnGain:
         Below ``offset_deg`` the smallest gain is used, as documented; the 2012 code's ``|turn - 3|`` would
         raise the gain again for smaller requests (a 1 deg request got the gain of 5 deg).
         """
+        if self.request_points_deg:
+            return piecewise_linear(abs(turn_deg), self.request_points_deg, self.curve_gains)
         excess = min(self.span_deg, max(0.0, abs(turn_deg) - self.offset_deg))
         return self.min_gain + (1.0 - self.min_gain) * excess / self.span_deg
 
     def predicted_turn_deg(self, gain: float) -> float:
         """Turn [deg] one turn motion makes at ``gain`` (dead reckoning)."""
+        if self.request_points_deg:
+            return piecewise_linear(gain, self.curve_gains, self.request_points_deg)
         if self.min_gain >= 1.0:
             return self.predicted_base_deg + self.predicted_slope_deg
         return self.predicted_base_deg + self.predicted_slope_deg * (gain - self.min_gain) / (1.0 - self.min_gain)

@@ -70,10 +70,11 @@ def plot_curve(records: Sequence[dict[str, Any]], view: CurveView, best_values: 
         shade = 0.85 - 0.5 * index / max(1, len(evaluations) - 1)
         axis.scatter(xs, ys, s=7, color=str(round(shade, 3)), zorder=1)
     best = [r for r in evaluations if r["values"] == best_values]
+    best_result = best[-1]["result"] if best else {}
     if best:
-        xs, ys = view.measured(best[-1]["result"])
+        xs, ys = view.measured(best_result)
         axis.scatter(xs, ys, s=30, color="C3", zorder=3, label="best candidate, measured")
-    xs, ys = view.tuned(best_values)
+    xs, ys = view.tuned(best_values, best_result)
     axis.plot(xs, ys, color="C0", lw=2, zorder=2, label="tuned curve")
     if view.target is not None:
         axis.plot(xs, view.target(xs), "k--", lw=1, zorder=2, label="target")

@@ -211,12 +211,12 @@ def subset(parameters: Sequence[Parameter], names: Sequence[str], what: str = "-
 @dataclass(frozen=True)
 class CurveView:
     """How a curve problem shows itself in the run folder's curve plot: the tuned curve and the measured
-    points of the rollouts that shaped it, both drawn from the trace (``tuned(values)`` and
-    ``measured(result)`` each return (x, y) sequences)."""
+    points of the rollouts that shaped it, both drawn from the trace (``tuned(values, result)`` of the best
+    candidate and ``measured(result)`` of each each return (x, y) sequences)."""
 
     xlabel: str
     ylabel: str
-    tuned: Callable[[Mapping[str, float]], tuple[Sequence[float], Sequence[float]]]
+    tuned: Callable[[Mapping[str, float], Result], tuple[Sequence[float], Sequence[float]]]
     measured: Callable[[Result], tuple[Sequence[float], Sequence[float]]]
     target: Callable[[Sequence[float]], Sequence[float]] | None = None
     """The wanted y at x (e.g. curvature linear in the command), drawn dashed."""

@@ -47,6 +47,8 @@ class TrustRegion:
         min_radius: ``done`` once the radius falls below it.
         max_radius: the radius never grows beyond it.
         max_iterations: ``done`` after this many iterations.
+        tolerance: ``done`` once the model's predicted decrease is below ``tolerance`` x max(1, |loss|) and the
+            last step was accepted (converged: more rollouts would only measure the noise floor).
 
     Raises:
         TuningError: the problem has no model.
@@ -55,7 +57,7 @@ class TrustRegion:
     name = "casadi-ipopt-trust-region"
 
     def __init__(self, problem: Problem, x0: Sequence[float], radius: float = 0.2, min_radius: float = 0.01,
-                 max_radius: float = 0.5, max_iterations: int = 30) -> None:
+                 max_radius: float = 0.5, max_iterations: int = 30, tolerance: float = 1e-4) -> None:
         if problem.model is None:
             raise TuningError(f"problem {problem.name!r} has no CasADi model (ModelSpec); use CMA-ES")
         self.center = np.clip(np.asarray(x0, dtype=float), 0.0, 1.0)
@@ -71,6 +73,9 @@ class TrustRegion:
         self.losses: list[float] = []
         self.last_status = "start"
         self.last_ratio = math.nan
+        self.tolerance = tolerance
+        self.converged = False
+        self._proposal_in_batch = False
         self.attach(problem)
 
     # ---- pickling: the problem holds functions; it is attached again by the run loop -------------------
@@ -84,12 +89,21 @@ class TrustRegion:
 
     # ---- the loop ------------------------------------------------------------------------------------
     def done(self) -> bool:
-        return self.iteration >= self.max_iterations or self.radius < self.min_radius
+        return self.iteration >= self.max_iterations or self.radius < self.min_radius or self.converged
 
     def ask(self) -> list[np.ndarray]:
         """The proposal (or, first, the centre) and the design points the model still lacks around it."""
-        first = self.proposal if self.proposal is not None else self.center
-        return [first] + self._design(first)
+        if self.proposal is None:
+            first = [self.center]
+        elif np.array_equal(self.proposal, self.center):
+            first = []  # no step to try: only the missing design points (the centre is measured already)
+        else:
+            first = [self.proposal]
+        self._proposal_in_batch = bool(first) and self.proposal is not None
+        design = self._design(first[0] if first else self.center)
+        if not first and not design:
+            design = [np.clip(self.center + 0.5 * self.radius * axis, 0.0, 1.0) for axis in np.eye(self.center.size)]
+        return first + design
 
     def tell(self, xs: Sequence[np.ndarray], results: Sequence[Result], losses: Sequence[float]) -> None:
         """Take the batch's results, run the ratio test on the proposal, refit and solve the next step."""
@@ -103,7 +117,7 @@ class TrustRegion:
         first_loss = float(losses[0])
         if self.proposal is None:
             self.center_loss = first_loss
-        else:
+        elif self._proposal_in_batch:
             actual = self.center_loss - first_loss
             predicted = self.predicted[0] - self.predicted[1] if self.predicted else 0.0
             self.last_ratio = actual / predicted if predicted > 1e-12 else (1.0 if actual > 0 else -1.0)
@@ -121,6 +135,12 @@ class TrustRegion:
         self.iteration += 1
         while not self.done():
             self._propose()
+            if self.last_status == "too few points":
+                break  # the next batch adds the missing design points
+            if self.predicted is not None and self.last_ratio >= ACCEPT_RATIO and (
+                    self.predicted[0] - self.predicted[1] < self.tolerance * max(1.0, abs(self.center_loss))):
+                self.converged = True
+                break
             if self.proposal is not None and np.max(np.abs(self.proposal - self.center)) > 1e-3 * self.radius:
                 break
             self.radius *= 0.5  # the model sees no better point here: look closer

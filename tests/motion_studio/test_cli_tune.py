@@ -30,3 +30,17 @@ def test_every_target_has_a_tuner_with_main():
 
     for module, _ in TUNERS.values():
         assert callable(importlib.import_module(module).main)
+
+
+def test_tune_help_lists_every_target():
+    result = _run("--help")
+    assert result.exit_code == 0
+    assert all(name in result.output for name in TUNERS)
+
+
+def test_every_target_prints_its_options_with_defaults():
+    for target in TUNERS:
+        result = _run(target, "--help")
+        assert result.exit_code == 0, (target, result.output)
+        assert "--checkpoint" in result.output or "--run-dir" in result.output or "--params" in result.output
+        assert "(default:" in result.output, target

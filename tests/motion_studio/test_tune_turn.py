@@ -43,3 +43,18 @@ def test_rewrite_keeps_the_other_sections(tmp_path):
     assert loaded.walk_lean == load_dynamic_params(DEFAULT_PARAMS_PATH).walk_lean
     text = path.read_text()
     assert text.split("[turn_gain]")[0] == original.split("[turn_gain]")[0]  # header and earlier sections intact
+
+
+def test_a_tuned_curve_through_points_is_written_and_read_back_with_provenance(tmp_path):
+    from motion_studio.tuning.params_file import Provenance
+    from motion_studio.turn_problem import turn_curve
+
+    path = tmp_path / "dynamic_elements.toml"
+    path.write_text(DEFAULT_PARAMS_PATH.read_text())
+    provenance = Provenance("motion-studio tune turn --evaluations 40", "2026-11-26", "abc1234").text("test")
+    curve = turn_curve({"gain_at_5_deg": 0.12, "gain_at_20_deg": 0.5, "gain_at_38_deg": 0.96}, (5.0, 20.0, 38.0),
+                       provenance)
+    write_curve(curve, path)
+    loaded = load_dynamic_params(path).turn_gain
+    assert loaded == curve and loaded.curve_gains == (0.12, 0.5, 0.96)
+    assert loaded.provenance.endswith("motion-studio tune turn --evaluations 40 on 2026-11-26 at abc1234")

@@ -1,7 +1,9 @@
-"""CMA-ES runs of the motion tuners (gait, kick, stand-up), and their results in the shape those tuners keep.
+"""A tuner's run from the command line: CMA-ES (gait, kick, stand-up) or either optimizer on a curve problem
+(lean, turn), with the progress bar, the plots and the lines that say where the files are.
 
 Why here: each tuner used to carry its own loop; now each builds a :class:`Problem` and calls
-:func:`run_cmaes`, which gives the trace, checkpoint, resume, plots and the progress bar the same way for all.
+:func:`run_cmaes` or :func:`run_optimizer`, which give the trace, checkpoint, resume, plots and the progress
+bar the same way for all.
 """
 
 from __future__ import annotations
@@ -16,6 +18,10 @@ from motion_studio.tuning.problem import Problem
 from motion_studio.tuning.progress import ProgressBar
 from motion_studio.tuning.run_folder import draw_plots, where_lines
 from motion_studio.tuning.runner import Event, RunResult, run
+from motion_studio.tuning.trust_region import TrustRegion
+
+#: Optimizer names of the curve tuners' CLI.
+OPTIMIZERS = ("casadi", "cmaes")
 
 
 def run_cmaes(problem: Problem, run_dir: Path, generations: int, sigma0: float, popsize: int | None = None,
@@ -51,6 +57,45 @@ def run_cmaes(problem: Problem, run_dir: Path, generations: int, sigma0: float, 
     return result
 
 
+def run_optimizer(problem: Problem, optimizer: str, run_dir: Path, max_evaluations: int, radius: float = 0.15,
+                  min_radius: float = 0.01, sigma0: float = 0.2, popsize: int | None = None, seed: int = 0, backend: Backend | None = None,
+                  progress: Callable[[str], None] | None = print, bar: bool = False) -> RunResult:
+    """The CasADi/IPOPT trust region (``casadi``) or CMA-ES (``cmaes``) on ``problem`` for at most
+    ``max_evaluations`` candidates in ``run_dir`` (resumed if it holds a checkpoint); plots drawn after.
+
+    Raises:
+        TuningError: an unknown optimizer name.
+    """
+    from motion_studio.tuning.errors import TuningError
+
+    if optimizer == "casadi":
+        def make(p: Problem):  # noqa: ANN202 - TrustRegion or CMAES
+            return TrustRegion(p, p.x0(), radius, min_radius=min_radius, max_iterations=10**6)
+    elif optimizer == "cmaes":
+        def make(p: Problem):  # noqa: ANN202
+            return CMAES(p.x0(), sigma0, popsize, seed, max_iterations=10**6)
+    else:
+        raise TuningError(f"unknown optimizer {optimizer!r}; known: {', '.join(OPTIMIZERS)}")
+
+    def line(event: Event) -> str:
+        return (f"{problem.name} iteration {event.iteration + 1}: batch min {event.loss:.4g} best {event.best_loss:.4g}"
+                f" ({event.evaluations} candidates)")
+
+    with ProgressBar(max_evaluations, f"{problem.name} {optimizer}", line if progress else None,
+                     disable=not bar) as on_event:
+        def told(event: Event) -> None:
+            on_event(event)
+            if progress and not bar and event.kind == "iteration":
+                progress(line(event))
+
+        result = run(problem, make, run_dir, backend, max_evaluations=max_evaluations, on_event=told)
+    paths = draw_plots(result, problem)
+    for text in where_lines(result, paths):
+        if progress:
+            progress(text)
+    return result
+
+
 def legacy_data(result: RunResult, full: Callable[[dict[str, float]], dict[str, Any]],
                 key: str = "params") -> dict[str, Any]:
     """``{"best": {"loss", key, "result"}, "evaluations": [{"generation", key, "result"}]}``: the shape the
@@ -62,4 +107,4 @@ def legacy_data(result: RunResult, full: Callable[[dict[str, float]], dict[str, 
             "evaluations": evaluations, "run_dir": str(result.run_dir)}
 
 
-__all__ = ["legacy_data", "run_cmaes"]
+__all__ = ["OPTIMIZERS", "legacy_data", "run_cmaes", "run_optimizer"]
