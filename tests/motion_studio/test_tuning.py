@@ -50,7 +50,7 @@ def turn_problem() -> Problem:
     def monotone(values):
         return [(values[f"g{i + 1}"] - values[f"g{i}"], 0.01, casadi.inf) for i in range(3)]
 
-    view = CurveView("gain", "turn [deg]", lambda v: ([v[f"g{i}"] for i in range(4)], list(TARGET_DEG)),
+    view = CurveView("gain", "turn [deg]", lambda v, result: ([v[f"g{i}"] for i in range(4)], list(TARGET_DEG)),
                      lambda r: ([0.1, 0.2, 0.3, 0.4], [r[f"turn_{i}"] for i in range(4)]))
     return Problem("toy_turn", tuple(Parameter(f"g{i}", 0.02, 1.0) for i in range(4)), turns,
                    start={f"g{i}": 0.5 for i in range(4)}, curve=view,
