@@ -26,8 +26,11 @@ from sim.monitor_scene import robot_body_order
 logger = logging.getLogger(__name__)
 
 #: Frames of an animation at most by default; longer logs are sampled evenly (a 10-minute match logged
-#: every 40 ms has 15000 frames x ~500 bodies, too much for one HTML page).
+#: every 0.2 s has 3000 frames).
 DEFAULT_MAX_FRAMES = 3000
+#: Animation bytes of a replay page at most (the field, meshes and viewer add about 1 MB): issue 16's
+#: 10 MB for replay.html.
+DEFAULT_MAX_ANIMATION_BYTES = 8_000_000
 TEAM_COLOURS = {"left": 0x3060D0, "right": 0xD04030, None: 0x909090}
 _HIDDEN = np.diag([1.0, 1.0, 1.0, 1.0])
 _HIDDEN[2, 3] = -50.0  # robots not in a frame are parked under the field
@@ -217,13 +220,15 @@ def _field(vis, config=None) -> None:
 
 
 def replay_log(path: str | Path, html_out: str | Path | None = None, *, max_frames: int = DEFAULT_MAX_FRAMES,
-               block: bool = True) -> str:
+               max_html_bytes: int = DEFAULT_MAX_ANIMATION_BYTES, block: bool = True) -> str:
     """Show a monitor log in meshcat (server on 127.0.0.1) or write it as a standalone HTML animation.
 
     Args:
         path: the log (one monitor message per line; .gz and .bz2 are read too).
         html_out: write a standalone HTML file here instead of serving.
         max_frames: longest animation; longer logs are sampled evenly.
+        max_html_bytes: fewer frames still when the animation of every body would pass this size (the
+            replay of a 10-minute 11 v 11 match gets about one frame per 1.5 s; three.js interpolates).
         block: when serving, wait for Ctrl-C before returning (the viewer lives as long as this process).
 
     Returns:
@@ -232,39 +237,49 @@ def replay_log(path: str | Path, html_out: str | Path | None = None, *, max_fram
     Raises:
         ValueError: the log holds no full state (nothing to show).
     """
-    import meshcat
-    import meshcat.animation
+    import meshcat.geometry as g
+    from meshcat.commands import SetAnimation
 
     from kinematics.meshcat_server import loopback_visualizer
     from kinematics.meshcat_view import add_nao
+    from kinematics.spec import robot_spec
+    from sim.replay_animation import BYTES_PER_BODY_FRAME, CompactAnimation
 
     frames = list(read_log(path))
     if not frames:
         raise ValueError(f"{path}: no full-state line, nothing to replay")
-    stride = max(1, math.ceil(len(frames) / max(1, max_frames)))
-    frames = frames[::stride]
-    vis = loopback_visualizer()  # 127.0.0.1 only, ends with this process
-    _field(vis)
-    import meshcat.geometry as g
-    vis["ball"].set_object(g.Sphere(0.042), g.MeshLambertMaterial(color=0xFF8000))
     robots: dict[str, RobotPose] = {}
     for frame in frames:
         for name, robot in frame.robots.items():
             robots.setdefault(name, robot)
+    # Only the bodies with a collision shape are drawn: the 1 cm joint spheres vanish at field scale and would
+    # cost 10 of every 23 tracks.
+    shown = {name: [b.name for b in robot_spec(robot.robot_type).bodies if b.collider] for name, robot in robots.items()}
+    tracks = 1 + sum(len(bodies) for bodies in shown.values())
+    budget_frames = max(2, int(max_html_bytes // (tracks * BYTES_PER_BODY_FRAME)))
+    stride = max(1, math.ceil(len(frames) / max(1, min(max_frames, budget_frames))))
+    frames = frames[::stride]
+    vis = loopback_visualizer()  # 127.0.0.1 only, ends with this process
+    _field(vis)
+    vis["ball"].set_object(g.Sphere(0.042), g.MeshLambertMaterial(color=0xFF8000))
     for name, robot in robots.items():
         add_nao(vis, f"robots/{name}", robot.robot_type, colour=TEAM_COLOURS.get(robot.side, 0x909090))
-    fps = 1.0 / max(1e-3, _frame_period(frames))
-    animation = meshcat.animation.Animation(default_framerate=fps)
+        for body in robot_spec(robot.robot_type).bodies:
+            if not body.collider:
+                vis[f"robots/{name}/{body.name}"].delete()
+    animation = CompactAnimation(fps=1.0 / max(1e-3, _frame_period(frames)))
+    ball_path = vis["ball"].path.lower()
+    body_paths = {name: [(body, vis[f"robots/{name}/{body}"].path.lower()) for body in bodies]
+                  for name, bodies in shown.items()}
     for index, frame in enumerate(frames):
-        with animation.at_frame(vis, index) as at:
-            if frame.ball is not None:
-                at["ball"].set_transform(frame.ball)
-            for name, robot in robots.items():
-                present = frame.robots.get(name)
-                for body in robot_body_order(robot.robot_type):
-                    pose = present.bodies.get(body, _HIDDEN) if present is not None else _HIDDEN
-                    at[f"robots/{name}/{body}"].set_transform(pose)
-    vis.set_animation(animation, play=html_out is None, repetitions=1)
+        if frame.ball is not None:
+            animation.set_transform(ball_path, index, frame.ball)
+        for name, paths in body_paths.items():
+            present = frame.robots.get(name)
+            for body, body_path in paths:
+                pose = present.bodies.get(body, _HIDDEN) if present is not None else _HIDDEN
+                animation.set_transform(body_path, index, pose)
+    vis.window.send(SetAnimation(animation, play=html_out is None, repetitions=1))
     last = frames[-1]
     logger.info("replaying %d frames of %s (%d robots), final time %.2f s, score %d:%d", len(frames), path,
                 len(robots), last.time_s, *last.score)
