@@ -1,14 +1,14 @@
 """Fit our simulator's contact parameters to the real recordings: CMA-ES over replay agreement, checkpointed.
 
 The objective is the mean trace score of `motion_studio.calibration.agreement` over every trace, plus a
-penalty per blow-up (a parameter set that makes the physics diverge is worse than any disagreement). Each
-generation's candidates and scores go to ``evaluations.jsonl`` and the optimiser's state to
-``checkpoint.json`` in the run folder, so a killed run resumes where it stopped and loses no finished replay.
+penalty per blow-up (a parameter set that makes the physics diverge is worse than any disagreement). The
+fit is a problem of the tuning room (``motion_studio.tuning``): every candidate's scores go to the run
+folder's ``trace.jsonl`` and the optimiser to ``checkpoint.pkl`` after every generation, so a killed run
+resumes where it stopped and loses no finished replay.
 """
 
 from __future__ import annotations
 
-import json
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, replace
@@ -18,7 +18,7 @@ import numpy as np
 
 from motion_studio.calibration.agreement import Measure, Replay, measures, score
 from motion_studio.calibration.errors import CalibrationError
-from motion_studio.cmaes import CMAES
+from motion_studio.tuning import CMAES, Parameter, Problem, TuningError, run
 from motion_studio.realserver.fixtures import Fixture
 from motion_studio.realserver.replay import replay_states
 from sim.physics_params import PhysicsParams
@@ -27,30 +27,14 @@ from sim.physics_params import PhysicsParams
 BLOW_UP_PENALTY = 0.5
 
 
-@dataclass(frozen=True)
-class FitParameter:
+def FitParameter(name: str, low: float, high: float, log: bool = False) -> Parameter:  # noqa: N802 - a constructor
     """One fitted physical parameter: a `PhysicsParams` field (or ``field[index]`` of a tuple field), bounds in
     its unit, searched on a log scale when ``log``."""
-
-    name: str
-    low: float
-    high: float
-    log: bool = False
-
-    def to_unit(self, value: float) -> float:
-        if self.log:
-            return float(np.clip((math.log(value) - math.log(self.low)) / math.log(self.high / self.low), 0, 1))
-        return float(np.clip((value - self.low) / (self.high - self.low), 0, 1))
-
-    def from_unit(self, unit: float) -> float:
-        unit = float(np.clip(unit, 0.0, 1.0))
-        if self.log:
-            return round(self.low * (self.high / self.low) ** unit, 6)
-        return round(self.low + unit * (self.high - self.low), 6)
+    return Parameter(name, low, high, decimals=6, log=log)
 
 
 #: The robot contact parameters (names as `PhysicsParams` fields).
-CONTACT_PARAMETERS: tuple[FitParameter, ...] = (
+CONTACT_PARAMETERS: tuple[Parameter, ...] = (
     FitParameter("friction", 0.5, 50.0, log=True),
     FitParameter("impratio", 0.1, 30.0, log=True),
     FitParameter("contact_solimp[0]", 0.05, 0.95),
@@ -62,7 +46,7 @@ CONTACT_PARAMETERS: tuple[FitParameter, ...] = (
     FitParameter("surface_layer_m", 0.0, 0.002),
 )
 #: The ball's contact parameters (its contacts with feet and ground take the ball's values).
-BALL_PARAMETERS: tuple[FitParameter, ...] = (
+BALL_PARAMETERS: tuple[Parameter, ...] = (
     FitParameter("ball_friction", 0.5, 200.0, log=True),
     FitParameter("ball_solref[0]", 0.005, 0.1, log=True),
     FitParameter("ball_solref[1]", 0.3, 3.0, log=True),
@@ -70,7 +54,7 @@ BALL_PARAMETERS: tuple[FitParameter, ...] = (
     FitParameter("ball_solimp[1]", 0.05, 0.99),
     FitParameter("ball_linear_drag_n_s_m", 0.005, 0.02, log=True),
 )
-PARAMETER_SETS: dict[str, tuple[FitParameter, ...]] = {
+PARAMETER_SETS: dict[str, tuple[Parameter, ...]] = {
     "contact": CONTACT_PARAMETERS, "ball": BALL_PARAMETERS, "all": CONTACT_PARAMETERS + BALL_PARAMETERS}
 DEFAULT_PARAMETERS = CONTACT_PARAMETERS
 
@@ -146,51 +130,34 @@ def evaluate(traces: list[Fixture], params: PhysicsParams, values: dict[str, flo
     return Evaluation(values or {}, objective, scores, details, blow_ups)
 
 
-def fit(traces: list[Fixture], base: PhysicsParams, parameters: tuple[FitParameter, ...], run_dir: Path,
+def fit(traces: list[Fixture], base: PhysicsParams, parameters: tuple[Parameter, ...], run_dir: Path,
         generations: int, popsize: int | None = None, sigma: float = 0.25, seed: int = 0,
         on_evaluation: Callable[[int, Evaluation], None] | None = None, ball_roll: bool = True) -> Evaluation:
     """CMA-ES from ``base`` over ``parameters``; resumes from ``run_dir``'s checkpoint. Returns the best
     evaluation found (the starting point included)."""
-    run_dir.mkdir(parents=True, exist_ok=True)
-    checkpoint = run_dir / "checkpoint.json"
-    log = run_dir / "evaluations.jsonl"
     names = [p.name for p in parameters]
-    if checkpoint.exists():
-        state = json.loads(checkpoint.read_text())
-        if state.get("parameters") != names:
-            raise CalibrationError(checkpoint, 0, f"checkpoint fits {state.get('parameters')}, not {names}; "
-                                                  "use another --out")
-        optimiser = CMAES.from_state(state["cmaes"])
-        best = state["best"]
-    else:
-        x0 = np.array([p.to_unit(read_value(base, p.name)) for p in parameters])
-        optimiser = CMAES.create(x0, sigma, popsize, seed)
-        start = {p.name: read_value(base, p.name) for p in parameters}
-        first = evaluate(traces, base, start, ball_roll)
-        _log(log, -1, first)
+    generation = {"now": -1}
+
+    def judge(values: dict[str, float]) -> dict[str, object]:
+        result = evaluate(traces, with_values(base, values), values, ball_roll)
         if on_evaluation:
-            on_evaluation(-1, first)
-        best = {"values": start, "objective": first.objective}
-    count = 0
-    while optimiser.generation < generations:
-        candidates = optimiser.ask()
-        losses = []
-        for unit in candidates:
-            values = {p.name: p.from_unit(u) for p, u in zip(parameters, unit)}
-            result = evaluate(traces, with_values(base, values), values, ball_roll)
-            _log(log, optimiser.generation, result)
-            if on_evaluation:
-                on_evaluation(optimiser.generation, result)
-            losses.append(result.objective)
-            count += 1
-            if result.objective < best["objective"]:
-                best = {"values": values, "objective": result.objective}
-        optimiser.tell(losses)
-        checkpoint.write_text(json.dumps({"parameters": names, "cmaes": optimiser.state(), "best": best}))
-    return evaluate(traces, with_values(base, best["values"]), best["values"], ball_roll)
+            on_evaluation(generation["now"], result)
+        if not math.isfinite(result.objective):  # the physics diverged: a failed candidate
+            return {"failed": "the physics diverged in a replay", "blow_ups": result.blow_ups}
+        return {"loss": result.objective, "scores": result.scores, "blow_ups": result.blow_ups}
 
+    def told(event) -> None:  # noqa: ANN001 - runner.Event
+        if event.kind == "iteration":
+            generation["now"] = event.iteration + 1
+        elif event.iteration == -1:
+            generation["now"] = 0  # the start is done; the first generation follows
 
-def _log(path: Path, generation: int, result: Evaluation) -> None:
-    with open(path, "a") as stream:
-        stream.write(json.dumps({"generation": generation, "values": result.values, "objective": result.objective,
-                                 "scores": result.scores, "blow_ups": result.blow_ups}) + "\n")
+    problem = Problem("calibrate", tuple(parameters), judge, start={n: read_value(base, n) for n in names},
+                      fail_loss=1e6)
+    try:
+        result = run(problem, lambda p: CMAES(p.x0(), sigma, popsize, seed, max_iterations=generations), run_dir,
+                     on_event=told)
+    except TuningError as error:
+        raise CalibrationError(run_dir / "checkpoint.pkl", 0, f"{error}; use another --out") from None
+    best = result.best["values"]
+    return evaluate(traces, with_values(base, best), best, ball_roll)

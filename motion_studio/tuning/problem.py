@@ -45,7 +45,9 @@ class Parameter:
         step: values are rounded to a multiple of it and returned as int (0 = continuous): whole counts,
             durations in multiples of a 20 ms cycle.
         decimals: rounding of continuous values (keeps parameter files readable).
-        unit: the unit of ``low``/``high``/values, for tables and plots ("deg", "m", "ms", "" = none).
+        unit: the unit of ``low``/``high``/values, for tables and plots ("deg", "m", "ms", "" = none; default
+            from the name's suffix).
+        log: searched on a log scale (bounds must then be positive): physical constants over decades.
 
     Raises:
         TuningError: a bound that is not finite, or ``low > high``.
@@ -57,6 +59,7 @@ class Parameter:
     step: float = 0.0
     decimals: int = 4
     unit: str = ""
+    log: bool = False
 
     def __post_init__(self) -> None:
         if not self.unit:
@@ -65,16 +68,23 @@ class Parameter:
             raise TuningError(f"parameter {self.name!r}: bounds must be finite, got [{self.low}, {self.high}]")
         if self.low > self.high:
             raise TuningError(f"parameter {self.name!r}: lower bound {self.low} > upper bound {self.high}")
+        if self.log and self.low <= 0.0:
+            raise TuningError(f"parameter {self.name!r}: a log scale needs a positive lower bound, got {self.low}")
 
     def to_unit(self, value: float) -> float:
         """``value`` in the box (clipped into [0, 1]); a fixed parameter (low == high) sits at 0.5."""
         if self.high == self.low:
             return 0.5
-        return min(1.0, max(0.0, (float(value) - self.low) / (self.high - self.low)))
+        if self.log:
+            unit = math.log(max(float(value), self.low) / self.low) / math.log(self.high / self.low)
+        else:
+            unit = (float(value) - self.low) / (self.high - self.low)
+        return min(1.0, max(0.0, unit))
 
     def from_unit(self, unit: float) -> float:
         """The parameter's value for a box coordinate (clipped to the bounds, rounded by step/decimals)."""
-        value = self.low + min(1.0, max(0.0, float(unit))) * (self.high - self.low)
+        unit = min(1.0, max(0.0, float(unit)))
+        value = self.low * (self.high / self.low) ** unit if self.log else self.low + unit * (self.high - self.low)
         if self.step:
             return int(round(value / self.step) * self.step)
         return round(value, self.decimals)
