@@ -93,4 +93,26 @@ def symbolic_nao(robot_type: int = 0) -> SymbolicNao:
     return build(robot_spec(robot_type))
 
 
-__all__ = ["SymbolicNao", "axis_rotation", "build", "symbolic_nao"]
+def pinocchio_max_diff_m(robot_type: int = 0, samples: int = 10, seed: int = 0) -> float:
+    """Largest difference between the symbolic Nao and Pinocchio (``kinematics.fk``) over ``samples`` random
+    joint vectors within the stops: frame positions [m], rotation entries and the CoM [m]."""
+    import numpy as np
+
+    from kinematics.fk import NaoKinematics
+
+    rng = np.random.default_rng(seed)
+    symbolic, pinocchio = symbolic_nao(robot_type), NaoKinematics(robot_type)
+    frames = [name for name in symbolic.frames if name in pinocchio._frame_ids]
+    worst = 0.0
+    for _ in range(samples):
+        q = np.array([rng.uniform(j.min_rad, j.max_rad) for j in pinocchio.spec.joints])
+        for name in frames:
+            position, rotation = symbolic.pose(name)(q)
+            reference = pinocchio.frame_pose(name, q)
+            worst = max(worst, float(np.max(np.abs(np.array(position).ravel() - reference.position_m))),
+                        float(np.max(np.abs(np.array(rotation) - reference.rotation))))
+        worst = max(worst, float(np.max(np.abs(np.array(symbolic.com(q)).ravel() - pinocchio.com(q)))))
+    return worst
+
+
+__all__ = ["SymbolicNao", "axis_rotation", "build", "pinocchio_max_diff_m", "symbolic_nao"]

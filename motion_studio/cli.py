@@ -30,6 +30,7 @@ COMMAND_MODULES = (
     "motion_studio.commands.transfer",
     "motion_studio.commands.real",
     "motion_studio.commands.calibrate",
+    "motion_studio.commands.bench_tuning",
 )
 
 
