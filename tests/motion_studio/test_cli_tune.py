@@ -44,3 +44,9 @@ def test_every_target_prints_its_options_with_defaults():
         assert result.exit_code == 0, (target, result.output)
         assert "--checkpoint" in result.output or "--run-dir" in result.output or "--params" in result.output
         assert "(default:" in result.output, target
+
+
+def test_bench_tuning_says_what_it_prints():
+    _register_commands()
+    result = CliRunner().invoke(app, ["bench", "tuning", "--help"])
+    assert result.exit_code == 0 and "--quick" in result.output and "rollouts" in result.output
