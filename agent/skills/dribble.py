@@ -16,6 +16,7 @@ All positions in the team frame [m], angles [deg] where named ``_deg``.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 
 from agent.motion import MotionController, MotionRequest
@@ -47,6 +48,14 @@ class DribbleConfig:
     """Pushing goes on while the ball lies within this of the robot's walking line (ego left) [m]..."""
     push_max_deg: float = 35.0
     """... and the robot's heading is within this of the ball -> target direction [deg]."""
+    keep_across_m: float = 0.35
+    """Pushing goes on while the robot stays within this of the target line [m]..."""
+    keep_lateral_m: float = 0.2
+    """... the ball within this of its walking line [m]..."""
+    keep_ahead_m: float = 1.5
+    """... at most this far ahead (a pushed ball rolls on; the robot follows it) [m]..."""
+    keep_max_deg: float = 50.0
+    """... and its heading within this of the ball -> target direction [deg]."""
     push_start_m: float = 0.2
     """Pushing (walking at the point beyond the ball) once the approach point is within this of the ball [m]."""
     round_m: float = 0.45
@@ -54,7 +63,11 @@ class DribbleConfig:
     avoid_beyond_m: float = 1.0
     """Other robots are avoided while the ball is farther than this [m] (near it, the ball is played)."""
     max_ball_age_s: float = 3.0
-    """A ball sighting older than this is lost: stand and sweep the head."""
+    """An own ball sighting older than this gives way to ``ball_source`` [s]..."""
+    stale_ball_s: float = 10.0
+    """... and is still walked toward (looking for the ball) up to this age [s]; then the robot searches."""
+    search_turn_s: float = 4.2
+    """Searching, the robot turns by a turn motion every this long [s] (the head sweeps one full period)."""
 
 
 class Dribble(Skill):
@@ -66,8 +79,12 @@ class Dribble(Skill):
     """
 
     def __init__(self, target_x_m: float, target_y_m: float, config: DribbleConfig | None = None,
-                 walk_config: WalkConfig | None = None) -> None:
+                 walk_config: WalkConfig | None = None,
+                 ball_source: Callable[[WorldModel], tuple[float, float] | None] | None = None) -> None:
         super().__init__()
+        self.ball_source = ball_source
+        """Where the ball is believed when the own sighting is stale (e.g. the teammates' reports): the
+        robot walks there and looks for it instead of standing with its back to it."""
         self.target = (float(target_x_m), float(target_y_m))
         self.config = config or DribbleConfig()
         self.walk_config = walk_config or WalkConfig()
@@ -89,14 +106,17 @@ class Dribble(Skill):
         report_walk_odometry(world, motion)
         pose = world.pose
         ball = world.ball
-        if (pose is None or ball is None or ball.position is None
-                or ball.age_s(world.now_s) > self.config.max_ball_age_s):
-            self.pushing = False
-            self._search_cycles += 1
-            sweep = 60.0 * math.sin(self._search_cycles * CYCLE_S * 1.5)
-            return self._steer.request(None, head_deg=(sweep, -25.0))
+        if ball is not None and ball.position is not None and ball.age_s(world.now_s) <= self.config.max_ball_age_s:
+            believed: tuple[float, float] | None = ball.position
+        else:
+            believed = self.ball_source(world) if self.ball_source is not None else None
+            if believed is None and ball is not None and ball.position is not None \
+                    and ball.age_s(world.now_s) <= self.config.stale_ball_s:
+                believed = ball.position  # stale, but better to walk there and look than stand still
+        if pose is None or believed is None:
+            return self._search(motion)
         self._search_cycles = 0
-        bx, by = ball.position
+        bx, by = believed
         point, avoid = self._aim_point(pose.x_m, pose.y_m, pose.heading_rad, (bx, by))
         ego = pose.to_ego(*point)
         ball_ego = pose.to_ego(bx, by)
@@ -115,6 +135,19 @@ class Dribble(Skill):
             return MotionRequest(request.motion, request.lean, request.turn_deg, request.gain, head)
         return MotionRequest(request.motion, request.lean, request.turn_deg, request.gain, head)
 
+    def _search(self, motion: MotionController) -> MotionRequest:
+        """No ball anywhere: sweep the head, and every ``search_turn_s`` turn on by a turn motion (the ball
+        may lie behind the robot, out of the head's reach)."""
+        self.pushing = False
+        self._search_cycles += 1
+        under_way = self._steer.turn_step(motion)
+        if under_way is not None:
+            return under_way
+        sweep = 60.0 * math.sin(self._search_cycles * CYCLE_S * 1.5)
+        if self._search_cycles % round(self.config.search_turn_s / CYCLE_S) == 0 and self._steer.can_turn(motion):
+            return self._steer.turn(motion, 90.0)
+        return self._steer.request(None, head_deg=(sweep, -25.0))
+
     def _aim_point(self, x_m: float, y_m: float, heading_rad: float,
                    ball: tuple[float, float]) -> tuple[tuple[float, float], bool]:
         """The point to walk at, and whether to avoid other robots on the way."""
@@ -132,6 +165,15 @@ class Dribble(Skill):
         ball_forward = (ball[0] - x_m) * ch + (ball[1] - y_m) * sh
         distance = math.hypot(rx, ry)
         avoid = distance > c.avoid_beyond_m
+        if self.pushing:
+            # Hysteresis: walk on through the ball while it stays roughly in front, even when it rolled
+            # ahead (switching between pushing and the approach point swung the aim and turned the robot
+            # back and forth beside the ball).
+            self.pushing = (along < c.behind_min_m and abs(across) <= c.keep_across_m
+                            and abs(ball_left) <= c.keep_lateral_m and -0.02 < ball_forward <= c.keep_ahead_m
+                            and heading_error <= c.keep_max_deg)
+            if self.pushing:
+                return (ball[0] + c.push_through_m * ux, ball[1] + c.push_through_m * uy), False
         if along < -c.behind_min_m:
             # Behind the ball: walk at a point on the line target -> ball, the farther behind the ball the
             # farther the robot is off that line, so the walk curves into the line and then through the

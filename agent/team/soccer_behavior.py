@@ -28,6 +28,7 @@ from agent.skills.turn import TurnToFace
 from agent.skills.walk import STAND, WalkTo
 from agent.skills.walk_ball import WalkToBall
 from agent.team import roles
+from agent.team.attack import goal_target, seen_opponents
 from agent.team.set_pieces import TakerMemory, kick_window, own_set_piece
 from agent.world_model import WorldModel
 
@@ -43,6 +44,8 @@ NORMAL_KICK_GOAL_DISTANCE_M = 2.5
 FACE_TOLERANCE_DEG = 20.0
 #: Play modes in which nobody moves (REFERENCE §4.2).
 FROZEN_MODES = frozenset({"BeforeKickOff", "Goal_Left", "Goal_Right", "GameOver", "unknown"})
+#: A set-piece taker kicks at once when facing the opponent goal within this [deg] (the kick follows the heading).
+SET_PIECE_AIM_DEG = 12.0
 #: Distance the players keep from the ball at the opponents' set pieces [m] (the referee clears 2 m).
 SET_PIECE_CLEARANCE_M = 2.2
 
@@ -63,6 +66,7 @@ class SoccerBehavior:
         """This cycle's role: idle, on_ball, keeper, support (for logs and tests)."""
         self.taker = TakerMemory()
         """Who took the own team's last set piece (it may not touch the ball again first)."""
+        self._world: WorldModel | None = None
         self._key: Hashable = None
         self._target: tuple[float, float] | None = None
 
@@ -71,6 +75,7 @@ class SoccerBehavior:
         return self.skills.motion
 
     def __call__(self, world: WorldModel) -> list[Action]:
+        self._world = world
         self._decide(world)
         return self.skills(world)
 
@@ -119,29 +124,41 @@ class SoccerBehavior:
     def _play_ball(self, ball: tuple[float, float]) -> None:
         """Dribble the ball toward the opponent goal (``agent.skills.dribble``): on our simulator it moved the
         ball 10-13 m in 40 s where the kick's line-up took 13-35 s per 2.4 m kick."""
-        goal = roles.OPPONENT_GOAL_M
-        self._use(("dribble",), lambda: Dribble(goal[0] + 0.5, goal[1]))
+        target = goal_target(ball, seen_opponents(self._world)) if self._world is not None else (15.5, 0.0)
+        skill = self.skills.skill
+        if self._key == ("dribble",) and isinstance(skill, Dribble) and skill.target != target \
+                and not skill.pushing:
+            skill.target = target  # a new aim point: keep the skill (and its steering state)
+        self._use(("dribble",), lambda: Dribble(*target, ball_source=roles.ball_belief))
 
     def _take_set_piece(self, world: WorldModel, ball: tuple[float, float]) -> None:
-        """One kick toward the opponent goal (the taker may touch the ball only once): the kick motion at
-        once when the ball already lies at its spot (the kick-off striker is beamed there), else the kick
-        skill's line-up."""
-        if self._key in (("set_piece_kick",), ("kick",)):
+        """One kick toward the opponent goal (the taker may touch the ball only once): the kick motion as
+        soon as the robot stands still with the ball in the set-piece window (``set_pieces.kick_window``:
+        wider than the kick skill's, a short kick now beats a long one later), else the kick skill's line-up
+        (straight into it: WalkToBall walked through the ball first, and that touch made the kick a second
+        one). On the real server the line-up backed off and walked in again for the whole 15 s of a kick-off
+        (its walks cover more there than the strides it plans with)."""
+        if self._key == ("set_piece_kick",):
             skill = self.skills.skill
             if skill is None or skill.done:
                 self.role = "set_piece_done"
             return
         seen = world.ball
-        if KICK in self.motion.library and seen is not None and seen.forward_m is not None \
-                and seen.age_s(world.now_s) < 0.5:
+        standing = self.motion.idle or self.motion.motion_name == STAND
+        if KICK in self.motion.library and standing and seen is not None and seen.forward_m is not None \
+                and seen.age_s(world.now_s) < 0.2 and not self.skills.recovering:
             spot = self.motion.library.get(KICK).constants
             if kick_window((seen.forward_m, seen.left_m or 0.0), float(spot.get("ball_forward_m", 0.125)),
-                           float(spot.get("ball_left_m", 0.0))) and self._facing(world, roles.OPPONENT_GOAL_M):
+                           float(spot.get("ball_left_m", 0.0))) and self._facing(world, roles.OPPONENT_GOAL_M,
+                                                                                 SET_PIECE_AIM_DEG):
                 self._use(("set_piece_kick",), lambda: PlayMotion(KICK))
                 return
+        if self._key == ("kick",):
+            skill = self.skills.skill
+            if skill is not None and skill.done:
+                self.role = "set_piece_done"
+            return
         goal = roles.OPPONENT_GOAL_M
-        # Straight into the kick skill: its line-up never walks through the ball (WalkToBall first did, and
-        # that touch made the kick a second one).
         self._use(("kick",), lambda: KickToward(goal[0], goal[1], strong=False))
 
     def _kick_ball(self, ball: tuple[float, float]) -> None:
@@ -184,12 +201,12 @@ class SoccerBehavior:
         return pose is not None and math.hypot(spot[0] - pose.x_m, spot[1] - pose.y_m) <= RETARGET_M
 
     @staticmethod
-    def _facing(world: WorldModel, point: tuple[float, float]) -> bool:
+    def _facing(world: WorldModel, point: tuple[float, float], tolerance_deg: float = FACE_TOLERANCE_DEG) -> bool:
         pose = world.pose
         if pose is None:
             return True
         forward, left = pose.to_ego(*point)
-        return abs(math.degrees(math.atan2(left, forward))) <= FACE_TOLERANCE_DEG
+        return abs(math.degrees(math.atan2(left, forward))) <= tolerance_deg
 
     def _use(self, key: Hashable, make: Callable[[], Skill | None]) -> None:
         """Switch to the skill ``make()`` unless the decision ``key`` is the one already running."""

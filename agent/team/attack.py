@@ -1,0 +1,51 @@
+"""Where to play the ball: the point of the opponent goal mouth with the clearest path from the ball.
+
+Why: against robots that only stand, our dribbles on the real server brought the ball to 1 m from the goal
+line and stopped there: the target was the goal centre, where the opponent goalkeeper stands. The goal is
+2.1 m wide (REFERENCE §4); of a few aim points across it, the one whose path from the ball passes farthest
+from every opponent seen lately wins (the centre on ties).
+"""
+
+from __future__ import annotations
+
+import math
+
+from agent.world_model import WorldModel
+
+#: Opponent goal line x [m] and the aim points across its mouth (y) [m]: inside the posts (±1.05) by a ball
+#: and a margin for the kick's or the push's direction error.
+GOAL_LINE_X_M = 15.0
+AIM_YS_M = (0.0, -0.6, 0.6)
+#: Aim this far behind the goal line [m], so the ball is played over the line, not to it.
+BEYOND_LINE_M = 0.5
+#: Opponent sightings older than this are not used [s].
+OPPONENT_FRESH_S = 4.0
+
+
+def _distance_to_segment(point: tuple[float, float], start: tuple[float, float], end: tuple[float, float]) -> float:
+    sx, sy = end[0] - start[0], end[1] - start[1]
+    length_sq = sx * sx + sy * sy
+    t = 0.0 if length_sq < 1e-12 else max(0.0, min(1.0, ((point[0] - start[0]) * sx + (point[1] - start[1]) * sy)
+                                                    / length_sq))
+    return math.hypot(point[0] - start[0] - t * sx, point[1] - start[1] - t * sy)
+
+
+def goal_target(ball: tuple[float, float], opponents: list[tuple[float, float]]) -> tuple[float, float]:
+    """The aim point behind the opponent goal line whose path from ``ball`` keeps farthest from the
+    ``opponents`` (team frame, metres); the centre when nobody is in the way."""
+    clearances = {y: min((_distance_to_segment(o, ball, (GOAL_LINE_X_M, y)) for o in opponents), default=math.inf)
+                  for y in AIM_YS_M}
+    best = max(AIM_YS_M, key=lambda y: clearances[y])
+    if clearances[AIM_YS_M[0]] + 0.2 >= clearances[best]:
+        best = AIM_YS_M[0]  # the centre unless a side is clearly (0.2 m) clearer
+    return GOAL_LINE_X_M + BEYOND_LINE_M, best
+
+
+def seen_opponents(world: WorldModel) -> list[tuple[float, float]]:
+    """Team-frame positions of the opponents seen within ``OPPONENT_FRESH_S``."""
+    now = world.now_s
+    return [o.position for o in world.opponents.values()
+            if o.position is not None and o.age_s(now) <= OPPONENT_FRESH_S]
+
+
+__all__ = ["goal_target", "seen_opponents"]
