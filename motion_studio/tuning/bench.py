@@ -43,6 +43,10 @@ def run(quick: bool = False, out: Path | None = None, workers: int = 2,
     figures["symbolic_vs_pinocchio_max_diff_m"] = max(
         pinocchio_max_diff_m(t, sizes["symbolic_samples"]) for t in ROBOT_TYPES)
     figures["curve_solver"] = f"ipopt (casadi {casadi.__version__} nlpsol)"
+    from motion_studio.strike_keyframe import optimise_strike
+
+    strike = optimise_strike(0)
+    figures["strike_toe_speed_m_s"] = round(strike.toe_speed_m_s, 3)  # kinematic bound at 6.14 rad/s
     dynamic = load_dynamic_params()
     backend = make_backend("processes", workers) if workers > 1 else make_backend()
     try:
