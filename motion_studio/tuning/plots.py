@@ -40,9 +40,14 @@ def plot_objective(records: Sequence[dict[str, Any]], path: Path, title: str = "
     losses = [(n + 1) * per_candidate for n in range(len(evaluations))], [_finite(r["loss"]) for r in evaluations]
     axis.scatter([x for x, y in zip(*losses) if y is not None], [y for y in losses[1] if y is not None], s=8,
                  color="0.6", label="candidate")
+    finite_points = [(x, y) for x, y in zip(*losses) if y is not None]
+    if finite_points:
+        running, best = [], float("inf")
+        for _, y in finite_points:
+            best = min(best, y)
+            running.append(best)
+        axis.step([x for x, _ in finite_points], running, where="post", color="C0", label="best so far")
     if iterations:
-        axis.step([r["rollouts"] for r in iterations], [r["best_loss"] for r in iterations], where="post",
-                  color="C0", label="best so far")
         axis.plot([r["rollouts"] for r in iterations], [r["batch_min"] for r in iterations], "o-", ms=3,
                   color="C1", lw=0.8, label="iteration's best")
     finite = [y for y in losses[1] if y is not None]
