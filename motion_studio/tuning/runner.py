@@ -225,7 +225,7 @@ def run(problem: Problem, make_optimizer: Callable[[Problem], Optimizer], run_di
             record = {"kind": "iteration", "iteration": iteration, "evaluations": count,
                       "rollouts": count * problem.rollouts_per_candidate, "batch_min": float(np.min(losses)),
                       "batch_median": float(np.median(losses)), "best_loss": best.entry["loss"],
-                      "best_values": best.entry["values"], **optimizer.summary()}
+                      "best_values": best.entry["values"], "time": _now(), **optimizer.summary()}
             writer.write(record)
             records.append(record)
             _atomic_pickle(checkpoint_path, {"problem": problem.name, "parameters": list(problem.names),
