@@ -27,7 +27,8 @@ def run_and_report(*, players: int, duration_s: float, matches: int, workers: in
                        seed=seed, log_path=str(out / "match.log.gz") if log else None, match_id="match")
     # results are keyed by their settings: a resume with other settings is refused before anything is played
     prepare_folder(out, MatchSettings(players, duration_s, team_left, team_right, log, base.robot_types,
-                                      base.kick_off_wait_s), resume)
+                                      base.kick_off_wait_s, left, right), resume)
+    make_agent = SideAgents(left, right, team_left)
     configs = batch_configs(base, matches, seed)
     if ray_address is not None:
         executor = RayExecutor(ray_address, num_cpus=workers if workers > 1 else None)

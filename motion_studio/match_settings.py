@@ -19,7 +19,7 @@ SETTINGS_FILE = "settings.json"
 #: Settings field -> the command-line option that sets it (for the message).
 OPTIONS = {"players_per_team": "--players", "duration_s": "--duration", "team_left": "--team-left",
            "team_right": "--team-right", "log": "--log/--no-log", "robot_types": "robot types",
-           "kick_off_wait_s": "kick-off wait"}
+           "kick_off_wait_s": "kick-off wait", "left": "--left", "right": "--right"}
 
 
 class MatchFolderError(ToolkitError, ValueError):
@@ -37,6 +37,8 @@ class MatchSettings:
     log: bool
     robot_types: tuple[int, ...]
     kick_off_wait_s: float
+    left: str = "ours"
+    right: str = "ours"
 
     def as_json(self) -> dict[str, Any]:
         return {**asdict(self), "robot_types": list(self.robot_types)}
