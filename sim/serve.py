@@ -17,6 +17,9 @@ logger = logging.getLogger(__name__)
 class ServeOptions:
     """What `motion-studio serve` sets: bind address, ports (monitor None = none), modes, seed, log file.
 
+    automatic_kick_off: kick off by itself ``kick_off_wait_s`` after the first agent arrived (rcssserver3d's
+    ``AutomaticKickOff``; its default is off: a monitor or trainer sends ``(kickOff Left|Right|None)``).
+    kick_off_wait_s: the wait of an automatic kick-off (None: the rule's ``WaitBeforeKickOff``, 30 s).
     log_step_cycles: cycles between log lines (10 = 0.2 s, the server's ``$monitorLoggerStep`` and the frame
     period RoboViz's log player assumes; 2 = every monitor frame, five times the size).
     """
@@ -30,6 +33,8 @@ class ServeOptions:
     log_path: str | None = None
     log_step_cycles: int = 10
     sync_timeout_s: float | None = None
+    automatic_kick_off: bool = False
+    kick_off_wait_s: float | None = None
 
 
 def build_simulation_server(options: ServeOptions, engine: object | None = None) -> tuple[SimServer, Callable[[], None]]:
@@ -47,8 +52,14 @@ def build_simulation_server(options: ServeOptions, engine: object | None = None)
 
     if engine is None:
         from sim.engine import SimEngine
+        from sim.referee import Referee
+        from sim.rules.params import default_config
 
-        engine = SimEngine(seed=options.seed, sync=options.sync)  # type: ignore[arg-type]
+        rules = {"automatic_kick_off": options.automatic_kick_off}
+        if options.kick_off_wait_s is not None:
+            rules["wait_before_kick_off_s"] = options.kick_off_wait_s
+        engine = SimEngine(seed=options.seed, sync=options.sync,  # type: ignore[arg-type]
+                           referee=Referee(default_config(**rules), seed=options.seed))
     world, referee = engine.world, engine.referee  # type: ignore[attr-defined]
     scene = MujocoWorldScene(world)
     if getattr(referee, "body_pose_source", None) is None and not hasattr(world, "robot_body_poses"):
