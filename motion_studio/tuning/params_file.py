@@ -36,6 +36,18 @@ def git_revision(root: Path = PROJECT_ROOT) -> str:
     return head + ("+dirty" if dirty else "")
 
 
+def _program(argv0: str) -> str:
+    """``motion-studio``, or ``python -m package.module`` for a module of the project run with -m."""
+    path = Path(argv0)
+    if path.name == "motion-studio" or path.suffix != ".py":
+        return path.name
+    try:
+        module = path.resolve().relative_to(PROJECT_ROOT).with_suffix("")
+    except ValueError:
+        return f"python {path.name}"
+    return "python -m " + ".".join(module.parts).removesuffix(".__main__")
+
+
 @dataclass(frozen=True)
 class Provenance:
     """How tuned values were made: the command line, the date (UTC) and the git revision."""
@@ -48,8 +60,7 @@ class Provenance:
     def now(cls, command: str | Sequence[str] | None = None) -> Provenance:
         """The running command (default ``sys.argv``), today and HEAD."""
         if command is None:
-            command = ["motion-studio" if Path(sys.argv[0]).name == "motion-studio" else "python -m " + Path(
-                sys.argv[0]).stem, *sys.argv[1:]]
+            command = [_program(sys.argv[0]), *sys.argv[1:]]
         text = command if isinstance(command, str) else " ".join(shlex.quote(part) for part in command)
         return cls(text, datetime.datetime.now(datetime.timezone.utc).date().isoformat(), git_revision())
 
