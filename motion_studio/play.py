@@ -21,9 +21,24 @@ logger = logging.getLogger(__name__)
 ANIMATION_FPS = 25
 
 
-def play_motion(motion: Motion, robot_type: int = 0, hold_s: float = 1.0) -> PreviewResult:
-    """Run the motion on a simulated robot (see ``motion_studio.editor.physics_preview``)."""
-    return run_physics_preview(motion, robot_type, hold_s=hold_s)
+#: File-name prefixes of motions played from lying: a stand-up starts on the side its name ends with.
+LYING_PREFIXES = ("standup_", "stand_up_", "getup_", "get_up_")
+
+
+def default_start(path: Path) -> str:
+    """The start ``play --start auto`` picks: lying on the back for ``standup_back.xml`` (front for
+    ``..._front``), standing for every other motion."""
+    stem = path.stem.lower()
+    if stem.startswith(LYING_PREFIXES):
+        for side in ("back", "front", "side"):
+            if stem.endswith(side):
+                return side
+    return "standing"
+
+
+def play_motion(motion: Motion, robot_type: int = 0, hold_s: float = 1.0, start: str = "standing") -> PreviewResult:
+    """Run the motion on a simulated robot from ``start`` (see ``motion_studio.editor.physics_preview``)."""
+    return run_physics_preview(motion, robot_type, hold_s=hold_s, start=start)
 
 
 def write_plot(result: PreviewResult, title: str, path: Path) -> Path:
@@ -43,7 +58,10 @@ def write_plot(result: PreviewResult, title: str, path: Path) -> Path:
     up.set_ylabel("torso up-axis z")
     up.set_xlabel("motion time [s] (negative: standing before the start)")
     up.legend(loc="lower left")
-    verdict = f"fell at {result.fall_time_s:.2f} s" if result.fell else "stayed up"
+    if result.start == "standing":
+        verdict = f"fell at {result.fall_time_s:.2f} s" if result.fell else "stayed up"
+    else:
+        verdict = f"from lying on the {result.start}: " + ("down after the motion" if result.fell else "stood up")
     figure.suptitle(f"{title}: {verdict}")
     figure.tight_layout()
     path.parent.mkdir(parents=True, exist_ok=True)
@@ -76,4 +94,4 @@ def write_animation(result: PreviewResult, robot_type: int, path: Path) -> Path:
     return path
 
 
-__all__ = ["play_motion", "write_animation", "write_plot"]
+__all__ = ["default_start", "play_motion", "write_animation", "write_plot"]

@@ -91,29 +91,8 @@ class Scenario:
         self.world.set_ball((position_m[0], position_m[1], 0.042))
 
     def lay_down(self, side: str, yaw_deg: float = 0.0, twist_deg: float = 0.0) -> None:
-        """Put the robot on its ``back`` or ``front`` on the ground, joints as they are, at rest.
-
-        ``twist_deg`` turns it about its own long (up) axis first, so that it lies partly on a side
-        (+ = its right side lower when lying on the back).
-        """
-        if side not in ("back", "front"):
-            raise ValueError(f"side must be 'back' or 'front', got {side!r}")
-        world, robot = self.world, self.world.by_key[self.key]
-        position = world.torso_position(self.key)
-        q = world.data.qpos
-        a = robot.root_qadr
-        # Body forward axis +y; lying on the back = rotated +90° about the body x axis (chest up).
-        pitch = math.pi / 2 if side == "back" else -math.pi / 2
-        yaw = math.radians(yaw_deg - 90.0)
-        twist = math.radians(twist_deg)
-        qyaw = np.array([math.cos(yaw / 2), 0.0, 0.0, math.sin(yaw / 2)])
-        qpitch = np.array([math.cos(pitch / 2), math.sin(pitch / 2), 0.0, 0.0])
-        qtwist = np.array([math.cos(twist / 2), 0.0, 0.0, math.sin(twist / 2)])
-        q[a:a + 3] = (position[0], position[1], 0.12)
-        q[a + 3:a + 7] = _quat_mul(_quat_mul(qyaw, qpitch), qtwist)
-        world.data.qvel[robot.root_dof:robot.root_dof + 6] = 0.0
-        import mujoco
-        mujoco.mj_kinematics(world.model, world.data)
+        """Put the robot on its ``back`` or ``front`` on the ground (see ``lay_robot_down``)."""
+        lay_robot_down(self.world, self.key, side, yaw_deg, twist_deg)
 
     def push(self, velocity_m_s: tuple[float, float, float], angular_rad_s: tuple[float, float, float] = (0, 0, 0)) -> None:
         """Add to the torso's velocity (field frame), e.g. to knock the robot over."""
@@ -144,6 +123,36 @@ class Scenario:
 
     def set_skill(self, skill: Skill | None) -> None:
         self.behavior.set_skill(skill)
+
+
+def lay_robot_down(world, key, side: str, yaw_deg: float = 0.0, twist_deg: float = 0.0) -> None:  # noqa: ANN001
+    """Put robot ``key`` of ``world`` (a ``sim.world.World``) on its ``back`` or ``front`` on the ground, joints
+    as they are, at rest: the lying start of the stand-up scenarios, benchmarks and ``motion-studio play``.
+
+    ``twist_deg`` turns it about its own long (up) axis first, so that it lies partly on a side
+    (+ = its right side lower when lying on the back).
+
+    Raises:
+        ValueError: ``side`` is neither back nor front.
+    """
+    if side not in ("back", "front"):
+        raise ValueError(f"side must be 'back' or 'front', got {side!r}")
+    robot = world.by_key[key]
+    position = world.torso_position(key)
+    q = world.data.qpos
+    a = robot.root_qadr
+    # Body forward axis +y; lying on the back = rotated +90° about the body x axis (chest up).
+    pitch = math.pi / 2 if side == "back" else -math.pi / 2
+    yaw = math.radians(yaw_deg - 90.0)
+    twist = math.radians(twist_deg)
+    qyaw = np.array([math.cos(yaw / 2), 0.0, 0.0, math.sin(yaw / 2)])
+    qpitch = np.array([math.cos(pitch / 2), math.sin(pitch / 2), 0.0, 0.0])
+    qtwist = np.array([math.cos(twist / 2), 0.0, 0.0, math.sin(twist / 2)])
+    q[a:a + 3] = (position[0], position[1], 0.12)
+    q[a + 3:a + 7] = _quat_mul(_quat_mul(qyaw, qpitch), qtwist)
+    world.data.qvel[robot.root_dof:robot.root_dof + 6] = 0.0
+    import mujoco
+    mujoco.mj_kinematics(world.model, world.data)
 
 
 def _quat_mul(a: np.ndarray, b: np.ndarray) -> np.ndarray:

@@ -9,7 +9,7 @@ from typing import Annotated, Optional
 import typer
 
 from motion_studio.cli import app
-from motion_studio.commands.options import RobotType
+from motion_studio.commands.options import RobotType, choice
 
 
 @app.command()
@@ -20,18 +20,22 @@ def play(
     plot: Annotated[Optional[Path], typer.Option(help="write a PNG of torso height and tilt here")] = None,
     html: Annotated[Optional[Path], typer.Option(help="write a standalone 3D animation (meshcat HTML) here")] = None,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object only")] = False,
+    start: Annotated[str, typer.Option(help="standing, or lying on the back, front or side (a stand-up's start); "
+                                            "auto: lying for standup_back/_front files, else standing")] = "auto",
 ) -> None:
     """Play MOTION_FILE with the agent's motion controller on our simulator and report whether the robot
-    stayed up (exit code 1 if it fell)."""
+    stayed up, or from a lying start whether it stood up (exit code 1 if it is down)."""
     import motions
-    from motion_studio.play import play_motion, write_animation, write_plot
+    from motion_studio.editor.physics_preview import STARTS
+    from motion_studio.play import default_start, play_motion, write_animation, write_plot
+
+    start = default_start(motion_file) if start == "auto" else choice(start, ("auto", *STARTS), "--start")
 
     try:
         motion = motions.load(motion_file)
     except (OSError, motions.MotionFormatError) as error:
-        typer.echo(f"play: {error}", err=True)
-        raise typer.Exit(2) from None
-    result = play_motion(motion, robot_type, hold_s=hold)
+        raise typer.BadParameter(str(error), param_hint="MOTION_FILE") from None
+    result = play_motion(motion, robot_type, hold_s=hold, start=start)
     summary = result.summary()
     if plot is not None:
         summary["plot"] = str(write_plot(result, motion_file.name, plot))

@@ -36,6 +36,12 @@ logger = logging.getLogger(__name__)
 SETTLE_S = 0.5
 #: Seconds the last pose is held after the motion ends (does it stay up?).
 HOLD_S = 1.0
+#: Seconds a robot laid on the ground lies still before the motion starts (it drops 0.12 m - its torso's
+#: half depth - and comes to rest).
+LYING_SETTLE_S = 1.0
+#: Starts of a run: standing at the zero pose, or lying (``motion_studio.scenarios.lay_robot_down``) on the
+#: back, the front, or the side (on the back turned 90 deg about the long axis: the right side down).
+STARTS = ("standing", "back", "front", "side")
 #: Torso up-axis z below this counts as fallen (REFERENCE §8.1).
 FALLEN_UP_Z = 0.6
 #: Where the robot plays, field frame [m]: clear of the ball at the centre spot and of the goals.
@@ -59,7 +65,9 @@ class PreviewResult:
     com_m: whole-robot centre of mass [m], (n, 3).
     up_z: z component of the torso's up axis (1 upright), (n,).
     body_poses: per sample, SimSpark body name -> 4x4 pose [m] (for drawing the simulated robot).
-    fell: whether the robot fell (up_z < FALLEN_UP_Z); fall_time_s: first such time, else None.
+    fell: whether the robot fell (up_z < FALLEN_UP_Z); fall_time_s: first such time, else None. From a lying
+    start (``start`` not "standing") the robot is down at first: fell then means down at any time after the
+    motion ended (it did not get up, or not for good).
     motion_duration_s: the motion's length; controller: which controller played it.
     cycles: simulated cycles; wall_s: wall time of the run [s].
     """
@@ -75,6 +83,7 @@ class PreviewResult:
     controller: str
     cycles: int
     wall_s: float
+    start: str = "standing"
 
     def sample_index(self, t_s: float) -> int:
         """Index of the sample nearest to motion time ``t_s``."""
@@ -88,7 +97,7 @@ class PreviewResult:
     def summary(self) -> dict[str, object]:
         """Plain numbers for a panel or a report."""
         shown = self.times_s >= 0.0
-        return {"fell": self.fell, "fall_time_s": self.fall_time_s, "controller": self.controller,
+        return {"start": self.start, "fell": self.fell, "fall_time_s": self.fall_time_s, "controller": self.controller,
                 "motion_duration_s": self.motion_duration_s, "cycles": self.cycles, "wall_s": self.wall_s,
                 "min_torso_height_m": float(self.torso_height_m[shown].min()) if shown.any() else None,
                 "final_torso_height_m": float(self.torso_height_m[-1])}
@@ -171,7 +180,7 @@ def run_physics_preview(motion: Motion, robot_type: int = 0,
                         progress: Callable[[float], None] | None = None,
                         cancel: threading.Event | None = None,
                         behavior_factory: Callable[[Motion, int], Behavior] | None = None,
-                        hold_s: float = HOLD_S) -> PreviewResult:
+                        hold_s: float = HOLD_S, start: str = "standing") -> PreviewResult:
     """Play ``motion`` on a simulated robot and record its torso, CoM and body poses every cycle.
 
     Args:
@@ -182,13 +191,17 @@ def run_physics_preview(motion: Motion, robot_type: int = 0,
         behavior_factory: (motion, robot_type) -> the agent behavior that plays it and has ``start()``;
             default ``ControllerPlayer``.
         hold_s: seconds recorded after the motion ends.
+        start: one of STARTS: standing, or lying on the back, front or side (a stand-up's start).
 
     Returns:
         The recorded run (see PreviewResult).
 
     Raises:
         PreviewCancelled: ``cancel`` was set.
+        ValueError: ``start`` is not one of STARTS.
     """
+    if start not in STARTS:
+        raise ValueError(f"start must be one of {', '.join(STARTS)}, got {start!r}")
     wall_start = time.perf_counter()
     tracker = (behavior_factory or ControllerPlayer)(motion, robot_type)
     engine = SimEngine(seed=0, referee=FrozenReferee())
@@ -198,11 +211,15 @@ def run_physics_preview(motion: Motion, robot_type: int = 0,
     host.run(CONNECT_CYCLES)
     world = engine.world
     world.place_robot(key, FIELD_SPOT_M[0], FIELD_SPOT_M[1], 0.0)
+    if start != "standing":
+        from motion_studio.scenarios import lay_robot_down
+
+        lay_robot_down(world, key, "front" if start == "front" else "back", twist_deg=90.0 if start == "side" else 0.0)
     robot = world.by_key[key]
     masses = world.model.body_mass[robot.body_ids]
     display = _display_transform(world.torso_position(key), world.heading_deg(key))
     cycle_s = world.params.cycle_s
-    settle_cycles = round(SETTLE_S / cycle_s)
+    settle_cycles = round((SETTLE_S if start == "standing" else LYING_SETTLE_S) / cycle_s)
     hold_cycles = math.ceil(hold_s / cycle_s)
     # Estimated length for the progress bar; the run lasts until the player says the motion ended.
     total = settle_cycles + math.ceil(motion.duration_s / cycle_s) + hold_cycles
@@ -238,12 +255,13 @@ def run_physics_preview(motion: Motion, robot_type: int = 0,
     if progress is not None:
         progress(1.0)
     up = np.array(ups)
-    fallen = np.flatnonzero(up < FALLEN_UP_Z)
     times_arr = np.array(times)
+    judged = up if start == "standing" else np.where(np.arange(len(up)) >= (ended_at or 0), up, 1.0)
+    fallen = np.flatnonzero(judged < FALLEN_UP_Z)
     fall_time = float(times_arr[fallen[0]]) if len(fallen) else None
     result = PreviewResult(times_arr, np.array(heights), np.array(coms), up, poses, bool(len(fallen)), fall_time,
                            motion.duration_s, getattr(tracker, "name", type(tracker).__name__),
-                           engine.cycle, time.perf_counter() - wall_start)
+                           engine.cycle, time.perf_counter() - wall_start, start)
     logger.info("physics preview of %r: %d cycles in %.2f s, %s", motion.name, result.cycles, result.wall_s,
                 "fell" if result.fell else "stayed up")
     return result
