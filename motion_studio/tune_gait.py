@@ -32,7 +32,7 @@ import numpy as np
 from agent.motion import MotionLibrary
 from kinematics.errors import IKError
 from motion_studio.tuning import Parameter, Problem, make_backend
-from motion_studio.tuning.session import legacy_data, run_cmaes
+from motion_studio.tuning.session import legacy_data, one_line_errors, run_cmaes
 from motion_studio.tuning.params_file import Provenance, write_file
 from motion_studio.tuning.run_folder import default_run_dir
 from motion_studio.walk_rollout import Push, WalkRun, run_walk
@@ -330,6 +330,7 @@ def measure_type(robot_type: int, names: Sequence[str] | None = None) -> Path:
     return path
 
 
+@one_line_errors("motion-studio tune gait")
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="motion-studio tune gait", description=__doc__.split("\n\n")[0],
                                      formatter_class=argparse.ArgumentDefaultsHelpFormatter)

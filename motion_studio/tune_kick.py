@@ -50,8 +50,8 @@ import numpy as np
 from agent.motion import MotionLibrary
 from kinematics.errors import IKError
 from motion_studio.kick_rollout import KickRun, Placement, run_kick
-from motion_studio.tuning import InProcess, Parameter, Problem, TuningError, make_backend, subset
-from motion_studio.tuning.session import legacy_data, run_cmaes
+from motion_studio.tuning import InProcess, Parameter, Problem, make_backend, subset
+from motion_studio.tuning.session import legacy_data, one_line_errors, run_cmaes
 from motion_studio.tuning.params_file import Provenance, toml_value, write_sections
 from motion_studio.tuning.run_folder import best_values, default_run_dir
 from motions.authoring.gait import GaitParams, build_stance
@@ -285,7 +285,8 @@ def measured_note(runs: Sequence[dict]) -> str:
     return "; ".join(parts)
 
 
-def main(argv: list[str] | None = None) -> None:
+@one_line_errors("motion-studio tune kick")
+def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="motion-studio tune kick", description=__doc__.splitlines()[0],
                                      formatter_class=argparse.ArgumentDefaultsHelpFormatter)
     parser.add_argument("section", help="kick section of motions/params/kick.toml (kick, kick_strong)")
@@ -334,10 +335,7 @@ def main(argv: list[str] | None = None) -> None:
     checkpoint = args.checkpoint or default_run_dir(f"kick_{args.section}{suffix}")
     dimensions = SPACE
     if args.only:
-        try:
-            dimensions = subset(SPACE, [name.strip() for name in args.only.split(",") if name.strip()])
-        except TuningError as error:
-            parser.error(str(error))
+        dimensions = subset(SPACE, [name.strip() for name in args.only.split(",") if name.strip()])
     if real:
         from motion_studio.realserver.rollout_kick import RealKickBench, ensure_private_network
 
@@ -370,7 +368,8 @@ def main(argv: list[str] | None = None) -> None:
         write_section(args.section, KickParams(**best["params"]), provenance, measured)
         for path in write_all():
             print(f"wrote {path}")
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    raise SystemExit(main())

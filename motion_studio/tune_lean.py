@@ -28,7 +28,7 @@ from motion_studio.lean_problem import (COMMANDS, QUICK_COMMANDS, QUICK_WALK_S, 
 from motion_studio.tuning import make_backend
 from motion_studio.tuning.params_file import Provenance, section_text, write_sections
 from motion_studio.tuning.run_folder import default_run_dir
-from motion_studio.tuning.session import OPTIMIZERS, run_optimizer
+from motion_studio.tuning.session import OPTIMIZERS, one_line_errors, run_optimizer
 from motion_studio.walk_rollout import run_walk
 
 #: Curvature beyond this earns nothing more in the scan's score [deg/m].
@@ -98,6 +98,7 @@ def write_lean(curve: WalkLean, path: Path = DEFAULT_PARAMS_PATH) -> None:
     write_sections(path, {"walk_lean": section_text("walk_lean", values)}, check)
 
 
+@one_line_errors("motion-studio tune lean")
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="motion-studio tune lean", description=__doc__.split("\n\n")[0],
                                      formatter_class=argparse.ArgumentDefaultsHelpFormatter)

@@ -48,7 +48,7 @@ from agent.motion import MotionController, MotionLibrary, default_library, load_
 from agent.skills.base import PlayMotion
 from motion_studio.scenarios import Scenario
 from motion_studio.tuning import BatchBackend, Parameter, Problem, make_backend
-from motion_studio.tuning.session import run_cmaes
+from motion_studio.tuning.session import one_line_errors, run_cmaes
 from motion_studio.tuning.params_file import Provenance, write_file
 from motion_studio.tuning.run_folder import default_run_dir
 from motions.authoring.standup import (PARAMS_PATH, STANDUPS, GroundPose, StandUpParams, build_standup,
@@ -359,6 +359,7 @@ def write_best(section: str, params: StandUpParams, provenance: str, measured: s
     write_file(path, "\n".join(parts), load_standup_params)
 
 
+@one_line_errors("motion-studio tune standup")
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="motion-studio tune standup", description=__doc__.splitlines()[0],
                                      formatter_class=argparse.ArgumentDefaultsHelpFormatter)

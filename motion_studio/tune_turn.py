@@ -35,7 +35,7 @@ from motion_studio.skill_bench.turn import gain_sweep
 from motion_studio.tuning import make_backend
 from motion_studio.tuning.params_file import Provenance, replace_sections, toml_value, write_sections
 from motion_studio.tuning.run_folder import default_run_dir
-from motion_studio.tuning.session import OPTIMIZERS, run_optimizer
+from motion_studio.tuning.session import OPTIMIZERS, one_line_errors, run_optimizer
 from motion_studio.turn_problem import (CHECK_DEG, CHECK_QUICK_DEG, QUICK_POINTS_DEG, REQUEST_POINTS_DEG,
                                         prediction_error, turn_curve, turn_problem)
 
@@ -124,6 +124,7 @@ def fit_main(args: argparse.Namespace) -> TurnGain:
     return curve
 
 
+@one_line_errors("motion-studio tune turn")
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="motion-studio tune turn", description=__doc__.splitlines()[0],
                                      formatter_class=argparse.ArgumentDefaultsHelpFormatter)

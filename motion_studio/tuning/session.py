@@ -8,6 +8,8 @@ bar the same way for all.
 
 from __future__ import annotations
 
+import functools
+import sys
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
@@ -96,6 +98,23 @@ def run_optimizer(problem: Problem, optimizer: str, run_dir: Path, max_evaluatio
     return result
 
 
+def one_line_errors(program: str) -> Callable[[Callable[..., int]], Callable[..., int]]:
+    """Decorate a tuner's ``main(argv)``: a ``TuningError`` (unknown parameter, lower > upper bound, NaN
+    objective, another problem's checkpoint) prints one line naming it and returns exit code 2."""
+    from motion_studio.tuning.errors import TuningError
+
+    def wrap(main: Callable[..., int]) -> Callable[..., int]:
+        @functools.wraps(main)
+        def guarded_main(argv: list[str] | None = None) -> int:
+            try:
+                return main(argv)
+            except TuningError as error:
+                print(f"{program}: error: {error}", file=sys.stderr)
+                return 2
+        return guarded_main
+    return wrap
+
+
 def legacy_data(result: RunResult, full: Callable[[dict[str, float]], dict[str, Any]],
                 key: str = "params") -> dict[str, Any]:
     """``{"best": {"loss", key, "result"}, "evaluations": [{"generation", key, "result"}]}``: the shape the
@@ -107,4 +126,4 @@ def legacy_data(result: RunResult, full: Callable[[dict[str, float]], dict[str, 
             "evaluations": evaluations, "run_dir": str(result.run_dir)}
 
 
-__all__ = ["OPTIMIZERS", "legacy_data", "run_cmaes", "run_optimizer"]
+__all__ = ["OPTIMIZERS", "legacy_data", "one_line_errors", "run_cmaes", "run_optimizer"]

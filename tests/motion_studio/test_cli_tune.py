@@ -50,3 +50,12 @@ def test_bench_tuning_says_what_it_prints():
     _register_commands()
     result = CliRunner().invoke(app, ["bench", "tuning", "--help"])
     assert result.exit_code == 0 and "--quick" in result.output and "rollouts" in result.output
+
+
+def test_an_unknown_parameter_is_one_line_naming_it(capsys):
+    from motion_studio import tune_kick
+
+    assert tune_kick.main(["kick", "--only", "ball_ahead_m,strike_speed_m_s"]) == 2
+    error = capsys.readouterr().err.strip()
+    assert error.startswith("motion-studio tune kick: error: --only: unknown parameter 'strike_speed_m_s'; known: ")
+    assert "\n" not in error
