@@ -5,11 +5,28 @@ from __future__ import annotations
 import importlib
 import logging
 import sys
+from typing import Annotated
 
 import typer
 
 app = typer.Typer(help="Motion authoring and skill-tuning toolkit for the simulated RoboCup 3D Nao.",
                   no_args_is_help=True, add_completion=False)
+
+
+def _show_version(value: bool) -> None:
+    if value:
+        from importlib.metadata import version
+
+        typer.echo(f"motion-studio (nao3d-toolkit) {version('nao3d-toolkit')}")
+        raise typer.Exit()
+
+
+@app.callback()
+def _options(version: Annotated[bool, typer.Option("--version", callback=_show_version, is_eager=True,
+                                                   help="print the version and exit")] = False) -> None:
+    """Motion authoring and skill-tuning toolkit for the simulated RoboCup 3D Nao."""
+
+
 bench_app = typer.Typer(help="Benchmarks: print figures as JSON/tables, never pass/fail.", no_args_is_help=True)
 app.add_typer(bench_app, name="bench")
 
@@ -31,6 +48,7 @@ COMMAND_MODULES = (
     "motion_studio.commands.real",
     "motion_studio.commands.calibrate",
     "motion_studio.commands.bench_tuning",
+    "motion_studio.commands.motion_files",
 )
 
 
