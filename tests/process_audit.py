@@ -9,6 +9,10 @@ from __future__ import annotations
 
 import ipaddress
 import os
+import queue
+import re
+import subprocess
+import threading
 import time
 from pathlib import Path
 
@@ -95,3 +99,23 @@ def listening_addresses(pids: set[int]) -> list[tuple[int, str, int]]:
     """(pid, address, port) of every socket the processes ``pids`` listen on."""
     table = listeners()
     return [(pid, *table[inode]) for pid in sorted(pids) for inode in socket_inodes(pid) if inode in table]
+
+
+def wait_for_line(process: subprocess.Popen, pattern: str, timeout_s: float = 120.0) -> re.Match:
+    """The first output line matching ``pattern``; fails after ``timeout_s`` or when the process ends."""
+    lines: queue.Queue[str] = queue.Queue()
+    threading.Thread(target=lambda: [lines.put(line) for line in iter(process.stdout.readline, "")],
+                     daemon=True).start()
+    deadline = time.monotonic() + timeout_s
+    seen = []
+    while time.monotonic() < deadline:
+        try:
+            line = lines.get(timeout=0.2)
+        except queue.Empty:
+            assert process.poll() is None, f"ended (exit {process.poll()}) before printing {pattern!r}: {seen}"
+            continue
+        seen.append(line.strip())
+        match = re.search(pattern, line)
+        if match:
+            return match
+    raise AssertionError(f"no line matching {pattern!r} within {timeout_s} s: {seen}")

@@ -51,6 +51,7 @@ def convert(
     motion = motions.load(source)
     options = ({"unroll_cycle": unroll_cycle, "drop_dynamic": drop_dynamic, "drop_unreachable": drop_unreachable}
                if target_format == "webots" else {"round_durations": round_durations})
+    target.parent.mkdir(parents=True, exist_ok=True)
     try:
         motions.save(motion, target, target_format, **options)
     except motions.ConversionError as error:  # the room names its keyword; the user knows the option

@@ -8,19 +8,17 @@ Real processes and real sockets: ``motion-studio view`` (meshcat's web and ZMQ p
 from __future__ import annotations
 
 import os
-import queue
-import re
 import signal
 import socket
 import subprocess
 import sys
-import threading
 import time
 import uuid
 
 import pytest
 
-from tests.process_audit import TAG_VARIABLE, is_loopback, listening_addresses, tagged_processes, wait_until_gone
+from tests.process_audit import (TAG_VARIABLE, is_loopback, listening_addresses, tagged_processes, wait_for_line,
+                                 wait_until_gone)
 
 CLI = [sys.executable, "-m", "motion_studio"]
 #: Seconds a child may take to notice its parent is gone (its watchdog looks four times a second).
@@ -32,26 +30,6 @@ def start(args: list[str], tag: str) -> subprocess.Popen:
     # its own session, so a SIGINT to its group is what a terminal's Ctrl-C would be, and reaches no test
     return subprocess.Popen(CLI + args, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env,
                             start_new_session=True)
-
-
-def wait_for_line(process: subprocess.Popen, pattern: str, timeout_s: float = 120.0) -> re.Match:
-    """The first output line matching ``pattern``; fails after ``timeout_s`` or when the process ends."""
-    lines: queue.Queue[str] = queue.Queue()
-    threading.Thread(target=lambda: [lines.put(line) for line in iter(process.stdout.readline, "")],
-                     daemon=True).start()
-    deadline = time.monotonic() + timeout_s
-    seen = []
-    while time.monotonic() < deadline:
-        try:
-            line = lines.get(timeout=0.2)
-        except queue.Empty:
-            assert process.poll() is None, f"ended (exit {process.poll()}) before printing {pattern!r}: {seen}"
-            continue
-        seen.append(line.strip())
-        match = re.search(pattern, line)
-        if match:
-            return match
-    raise AssertionError(f"no line matching {pattern!r} within {timeout_s} s: {seen}")
 
 
 def free_port() -> int:
