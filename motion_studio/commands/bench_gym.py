@@ -19,11 +19,14 @@ def bench_gym(
     as_json: Annotated[bool, typer.Option("--json", help="one JSON object per run")] = False,
 ) -> None:
     """Time one env, then ``--envs`` envs in a SyncVectorEnv and an AsyncVectorEnv (one step = 20 ms)."""
+    import logging
+
     from nao3d_gym import ENVIRONMENTS
     from nao3d_gym.bench import TARGET_STEPS_PER_S, run_single, run_vector
 
     if env_id not in ENVIRONMENTS:
         raise typer.BadParameter(f"expected one of {', '.join(ENVIRONMENTS)}, got {env_id!r}", param_hint="--env")
+    logging.getLogger("sim").setLevel(logging.WARNING)   # every reset's play-mode line is noise here
     results = [run_single(env_id, steps)]
     results += [run_vector(env_id, envs, vector_steps, mode) for mode in ("sync", "async")]
     for result in results:
