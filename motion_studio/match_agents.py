@@ -19,14 +19,19 @@ def make_agent(team: str, unum: int, robot_type: int) -> Agent:
     return soccer_agent(AgentConfig(team=team, unum=unum, robot_type=robot_type))
 
 
+#: The formation of the baseline and standing teams: the seed's beam spots (as when issue 15's "3 robots that
+#: only stand" were measured: goalkeeper and two defenders in front of their goal), not ours.
+OPPONENT_FORMATION = "thesis"
+
+
 def make_baseline_agent(team: str, unum: int, robot_type: int) -> Agent:
     """The baseline opponent (``agent.team.baseline``): nearest player kicks toward the goal."""
-    return baseline_agent(AgentConfig(team=team, unum=unum, robot_type=robot_type))
+    return baseline_agent(AgentConfig(team=team, unum=unum, robot_type=robot_type, formation=OPPONENT_FORMATION))
 
 
 def make_idle_agent(team: str, unum: int, robot_type: int) -> Agent:
-    """An agent that connects, beams, localizes and talks but never moves (runner plumbing, baselines)."""
-    return idle_agent(AgentConfig(team=team, unum=unum, robot_type=robot_type))
+    """An agent that connects, beams (the seed's spots), localizes and talks but never moves."""
+    return idle_agent(AgentConfig(team=team, unum=unum, robot_type=robot_type, formation=OPPONENT_FORMATION))
 
 
 _BUILDERS = {"ours": make_agent, "baseline": make_baseline_agent, "standing": make_idle_agent}

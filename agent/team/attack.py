@@ -41,6 +41,31 @@ def goal_target(ball: tuple[float, float], opponents: list[tuple[float, float]])
     return GOAL_LINE_X_M + BEYOND_LINE_M, best
 
 
+#: A set-piece kick aims at the goal, or this many degrees to either side of it, whichever path stays
+#: clearest of the opponents over the kick's first ``KICK_PATH_M`` (a kick-off straight ahead on our
+#: simulator stopped between the two opponents the referee had moved to x = 2.5, and stayed there 70 s).
+SET_PIECE_ANGLES_DEG = (0.0, 35.0, -35.0)
+KICK_PATH_M = 4.0
+#: The goal direction is kept while its path is this clear [m].
+CLEAR_PATH_M = 1.0
+
+
+def set_piece_target(ball: tuple[float, float], opponents: list[tuple[float, float]]) -> tuple[float, float]:
+    """Where a set-piece kick aims (team frame) [m]: toward the goal centre, or turned by one of
+    ``SET_PIECE_ANGLES_DEG`` when that path is clearer of the ``opponents``."""
+    to_goal = math.atan2(-ball[1], GOAL_LINE_X_M - ball[0])
+    best, best_clearance = None, -1.0
+    for angle_deg in SET_PIECE_ANGLES_DEG:
+        heading = to_goal + math.radians(angle_deg)
+        end = (ball[0] + KICK_PATH_M * math.cos(heading), ball[1] + KICK_PATH_M * math.sin(heading))
+        if abs(end[1]) > 9.0:
+            continue  # out over the touch line
+        clearance = min((_distance_to_segment(o, ball, end) for o in opponents), default=math.inf)
+        if best is None or (best_clearance < CLEAR_PATH_M and clearance > best_clearance):
+            best, best_clearance = end, clearance
+    return best if best is not None else (GOAL_LINE_X_M, 0.0)
+
+
 def seen_opponents(world: WorldModel) -> list[tuple[float, float]]:
     """Team-frame positions of the opponents seen within ``OPPONENT_FRESH_S``."""
     now = world.now_s
@@ -48,4 +73,4 @@ def seen_opponents(world: WorldModel) -> list[tuple[float, float]]:
             if o.position is not None and o.age_s(now) <= OPPONENT_FRESH_S]
 
 
-__all__ = ["goal_target", "seen_opponents"]
+__all__ = ["goal_target", "seen_opponents", "set_piece_target"]

@@ -52,7 +52,7 @@ class BaselineBehavior(SoccerBehavior):
             self._play_ball(ball)
             return
         self.role = "support"
-        home = beam_spot(world.unum)
+        home = beam_spot(world.unum, "thesis")
         self._stand_at(world, (home.x_m, home.y_m), ball)
 
 

@@ -28,7 +28,7 @@ from agent.skills.turn import TurnToFace
 from agent.skills.walk import STAND, WalkTo
 from agent.skills.walk_ball import WalkToBall
 from agent.team import roles
-from agent.team.attack import goal_target, seen_opponents
+from agent.team.attack import goal_target, seen_opponents, set_piece_target
 from agent.team.set_pieces import TakerMemory, kick_window, own_set_piece
 from agent.world_model import WorldModel
 
@@ -67,6 +67,7 @@ class SoccerBehavior:
         self.taker = TakerMemory()
         """Who took the own team's last set piece (it may not touch the ball again first)."""
         self._world: WorldModel | None = None
+        self._set_piece_aim: tuple[float, float] | None = None
         self._key: Hashable = None
         self._target: tuple[float, float] | None = None
 
@@ -144,13 +145,15 @@ class SoccerBehavior:
                 self.role = "set_piece_done"
             return
         seen = world.ball
+        if self._key != ("kick",) or self._set_piece_aim is None:
+            self._set_piece_aim = set_piece_target(ball, seen_opponents(world))
+        aim = self._set_piece_aim
         standing = self.motion.idle or self.motion.motion_name == STAND
         if KICK in self.motion.library and standing and seen is not None and seen.forward_m is not None \
                 and seen.age_s(world.now_s) < 0.2 and not self.skills.recovering:
             spot = self.motion.library.get(KICK).constants
             if kick_window((seen.forward_m, seen.left_m or 0.0), float(spot.get("ball_forward_m", 0.125)),
-                           float(spot.get("ball_left_m", 0.0))) and self._facing(world, roles.OPPONENT_GOAL_M,
-                                                                                 SET_PIECE_AIM_DEG):
+                           float(spot.get("ball_left_m", 0.0))) and self._facing(world, aim, SET_PIECE_AIM_DEG):
                 self._use(("set_piece_kick",), lambda: PlayMotion(KICK))
                 return
         if self._key == ("kick",):
@@ -158,8 +161,7 @@ class SoccerBehavior:
             if skill is not None and skill.done:
                 self.role = "set_piece_done"
             return
-        goal = roles.OPPONENT_GOAL_M
-        self._use(("kick",), lambda: KickToward(goal[0], goal[1], strong=False))
+        self._use(("kick",), lambda: KickToward(aim[0], aim[1], strong=False))
 
     def _kick_ball(self, ball: tuple[float, float]) -> None:
         """Walk to the ball until WalkToBall says it is close and in front, then kick; after the kick (or a
