@@ -25,10 +25,9 @@ from agent.world.state import BodyState, GameInfo
 from agent.world.vision import VisionFrame, vision_frame
 from kinematics.fk import NaoKinematics
 from kinematics.spec import robot_spec
+from agent.protocol.constants import CYCLE_S
 
 logger = logging.getLogger(__name__)
-
-CYCLE_S = 0.02
 
 
 class WorldModel:

@@ -38,10 +38,10 @@ if str(ROOT) not in sys.path:  # runnable as a plain script from any directory
 from agent import Agent, AgentConfig  # noqa: E402
 from agent.world.frames import wrap_angle_rad  # noqa: E402
 from sim.engine import FrozenReferee, SimEngine  # noqa: E402
+from agent.protocol.constants import CYCLE_S
 
 TEAM, UNUM = "Ours", 2
 LOCALIZERS = ("ekf", "seed")
-CYCLE_S = 0.02
 WALK_SPEED_M_S = 0.5
 TURN_RATE_DEG_S = 30.0
 PLACEMENT_HEIGHT_M = 0.4

@@ -15,8 +15,8 @@ from agent.motion import MotionController, MotionLibrary
 from agent.motion.dynamic import DynamicParams
 from agent.skills.base import PlayMotion
 from motion_studio.scenarios import Scenario, Truth
+from agent.protocol.constants import CYCLE_S
 
-CYCLE_S = 0.02
 #: Cycles of standing in the stance before the ball is placed (the stance is reached and settled).
 SETTLE_CYCLES = 30
 #: The ball counts as struck once it moves faster than this [m/s] (a nudge while the robot shifts its

@@ -14,8 +14,8 @@ from agent.motion import MotionController, MotionLibrary
 from agent.motion.dynamic import DynamicParams
 from agent.skills.base import PlayMotion
 from motion_studio.scenarios import Scenario, Truth
+from agent.protocol.constants import CYCLE_S
 
-CYCLE_S = 0.02
 #: Where walk runs put the ball: by the touch line, off every walk's path (left at the centre spot, it lay
 #: under a robot started there and on the forward runs' line) [m].
 BALL_AWAY_M = (0.0, 9.8)

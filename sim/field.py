@@ -2,6 +2,7 @@
 
 Everything here is in the world (field) frame, metres: origin at the centre spot, x toward the right team's
 goal, y left, z up. The line list is what vision clips and reports; lines have no collision geometry.
+The dimensions, ball and landmarks are agent.protocol.constants' (the agent's too); the walls are sim/'s.
 """
 
 from __future__ import annotations
@@ -11,38 +12,22 @@ import math
 import mujoco
 import numpy as np
 
-FIELD_LENGTH_M = 30.0
-FIELD_WIDTH_M = 20.0
-HALF_LENGTH_M = FIELD_LENGTH_M / 2.0
-HALF_WIDTH_M = FIELD_WIDTH_M / 2.0
-GOAL_WIDTH_M = 2.1
-GOAL_HEIGHT_M = 0.8
-GOAL_DEPTH_M = 0.6
-PENALTY_DEPTH_M = 1.8
-PENALTY_HALF_WIDTH_M = 3.0
-CENTRE_CIRCLE_RADIUS_M = 2.0
-CENTRE_CIRCLE_CHORDS = 10
-BALL_RADIUS_M = 0.042
-BALL_MASS_KG = 0.026
-AGENT_RADIUS_M = 0.4
+from agent.protocol.constants import (AGENT_RADIUS_M, BALL_MASS_KG, BALL_RADIUS_M, CENTRE_CIRCLE_CHORDS,
+                                      CENTRE_CIRCLE_RADIUS_M, FIELD_LENGTH_M, FIELD_WIDTH_M, GOAL_DEPTH_M,
+                                      GOAL_HEIGHT_M, GOAL_WIDTH_M, HALF_LENGTH_M, HALF_WIDTH_M, LANDMARKS,
+                                      PENALTY_DEPTH_M, PENALTY_HALF_WIDTH_M)
+
 # REFERENCE §4.1: collision walls, 1 m thick, centred at x = ±24.99 and y = ±25; height = FieldHeight 40 m.
 WALL_X_M = 24.99
 WALL_Y_M = 25.0
 WALL_THICKNESS_M = 1.0
 WALL_HEIGHT_M = 40.0
 
-#: Vision landmarks (REFERENCE §4.1), in the order the server lists them in ``See`` (measured: goal posts
-#: G1L G2L before G2R G1R, then flags; see tests/sim/test_vision.py against the recorded samples).
-LANDMARKS: dict[str, tuple[float, float, float]] = {
-    "G1L": (-HALF_LENGTH_M, GOAL_WIDTH_M / 2.0, GOAL_HEIGHT_M),
-    "G2L": (-HALF_LENGTH_M, -GOAL_WIDTH_M / 2.0, GOAL_HEIGHT_M),
-    "G2R": (HALF_LENGTH_M, -GOAL_WIDTH_M / 2.0, GOAL_HEIGHT_M),
-    "G1R": (HALF_LENGTH_M, GOAL_WIDTH_M / 2.0, GOAL_HEIGHT_M),
-    "F1L": (-HALF_LENGTH_M, HALF_WIDTH_M, 0.0),
-    "F2L": (-HALF_LENGTH_M, -HALF_WIDTH_M, 0.0),
-    "F1R": (HALF_LENGTH_M, HALF_WIDTH_M, 0.0),
-    "F2R": (HALF_LENGTH_M, -HALF_WIDTH_M, 0.0),
-}
+__all__ = ["AGENT_RADIUS_M", "BALL_MASS_KG", "BALL_RADIUS_M", "CENTRE_CIRCLE_CHORDS", "CENTRE_CIRCLE_RADIUS_M",
+           "FIELD_LENGTH_M", "FIELD_LINES_M", "FIELD_WIDTH_M", "GOAL_DEPTH_M", "GOAL_HEIGHT_M", "GOAL_WIDTH_M",
+           "HALF_LENGTH_M", "HALF_WIDTH_M", "LANDMARKS", "LANDMARK_NAMES", "LANDMARK_POSITIONS_M", "PENALTY_DEPTH_M",
+           "PENALTY_HALF_WIDTH_M", "add_static_geometry", "field_lines", "goal_boxes", "wall_boxes"]
+
 LANDMARK_NAMES: tuple[str, ...] = tuple(LANDMARKS)
 LANDMARK_POSITIONS_M = np.array(list(LANDMARKS.values()))
 

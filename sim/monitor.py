@@ -22,6 +22,7 @@ from sim.monitor_scene import (IDENTITY, Decimals, Matrix, Node, SceneWriter, ba
                                static_scene, translation)
 from sim.rules.params import PLAY_MODES, RefereeConfig, default_config
 from sim.rules.self_collision import BodyPoseArrays
+from agent.protocol.constants import CYCLE_S
 
 logger = logging.getLogger(__name__)
 
@@ -32,7 +33,6 @@ DEFAULT_FULL_STATE_EVERY_S = 3.0
 # every 0.04 s would be 52 MB, the server's own number spelling at 0.2 s 30 MB.
 DEFAULT_LOG_STEP_CYCLES = 10
 DEFAULT_LOG_DECIMALS: Decimals = (2, 3)
-CYCLE_S = 0.02
 
 
 @dataclass(frozen=True)

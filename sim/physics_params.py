@@ -78,13 +78,14 @@ import os
 import tomllib
 from dataclasses import dataclass, fields, replace
 from pathlib import Path
+from agent.protocol.constants import CYCLE_S
 
 
 @dataclass(frozen=True)
 class PhysicsParams:
     """Numbers of the MuJoCo world; see the module docstring for why each has its value."""
 
-    cycle_s: float = 0.02
+    cycle_s: float = CYCLE_S
     """Simulated time per agent cycle [s] (REFERENCE §1)."""
     substeps: int = 1
     """MuJoCo steps per cycle; timestep = cycle_s / substeps."""

@@ -49,13 +49,13 @@ from typing import Protocol
 
 from agent.protocol.errors import ProtocolError
 from agent.protocol.framing import FrameDecoder, frame
+from agent.protocol.constants import CYCLE_S
 
 logger = logging.getLogger(__name__)
 
 DEFAULT_HOST = "127.0.0.1"
 DEFAULT_AGENT_PORT = 3100
 DEFAULT_MONITOR_PORT = 3200
-CYCLE_S = 0.02
 # REFERENCE §3.9: a new agent counts as synced during its first 4 perceptor cycles. Counted here in sense
 # messages sent, so a client that never sends (scene ...) (and so gets no sense) never stalls the server.
 SYNC_GRACE_CYCLES = 4

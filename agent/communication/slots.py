@@ -10,8 +10,8 @@
 """
 
 from __future__ import annotations
+from agent.protocol.constants import CYCLE_S
 
-CYCLE_S = 0.02
 SLOT_CYCLES = 3
 DEFAULT_TEAM_SIZE = 11
 

@@ -18,6 +18,7 @@ from agent.localization.triangulation import triangulate
 from agent.world.field import Segment
 from agent.world.frames import Pose2D
 from agent.world.vision import VisionFrame
+from agent.protocol.constants import CYCLE_S
 
 
 class Localizer(Protocol):
@@ -29,7 +30,7 @@ class Localizer(Protocol):
     def reset(self) -> None: ...
 
     def predict(self, yaw_delta_rad: float, odometry_m: tuple[float, float] | None = None,
-                dt_s: float = 0.02) -> None: ...
+                dt_s: float = CYCLE_S) -> None: ...
 
     def correct(self, frame: VisionFrame) -> None: ...
 

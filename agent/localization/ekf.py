@@ -26,6 +26,7 @@ from agent.localization.triangulation import triangulate
 from agent.world.field import Segment
 from agent.world.frames import Pose2D, wrap_angle_rad
 from agent.world.vision import VisionFrame
+from agent.protocol.constants import CYCLE_S
 
 
 def default_config() -> dict[str, float]:
@@ -56,8 +57,6 @@ def default_config() -> dict[str, float]:
         "localized_sd_m": 0.5,  # [m] position sd below which the robot counts as localized
     }
 
-
-CYCLE_S = 0.02
 
 
 class EkfLocalizer:

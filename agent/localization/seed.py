@@ -13,6 +13,7 @@ from agent.localization.triangulation import triangulate
 from agent.world.field import Segment
 from agent.world.frames import Pose2D
 from agent.world.vision import VisionFrame
+from agent.protocol.constants import CYCLE_S
 
 
 class SeedLocalizer:
@@ -37,7 +38,7 @@ class SeedLocalizer:
         self.filter.reset()
 
     def predict(self, yaw_delta_rad: float, odometry_m: tuple[float, float] | None = None,
-                dt_s: float = 0.02) -> None:
+                dt_s: float = CYCLE_S) -> None:
         """No motion model in the seed."""
 
     def correct(self, frame: VisionFrame) -> None:

@@ -43,8 +43,8 @@ from agent.motion.dynamic import DynamicParams
 from agent.motion.library import MotionLibrary, WebotsTiming
 from kinematics.spec import robot_spec
 from motions import XML, Keyframe, Motion
+from agent.protocol.constants import CYCLE_S
 
-CYCLE_S = 0.02
 #: Head joints (driven by ``MotionRequest.head_deg`` when set, as the seed agent drives the head apart).
 HEAD_JOINTS = ("hj1", "hj2")
 #: Guard against a loop of skipped phases (every phase of a cycle skipped).

@@ -37,10 +37,10 @@ from agent.skills.kick_lineup import STEP_FORWARD, KickConfig, Move, Spot, plan
 from agent.skills.walk import FORWARD, TURN_LEFT, TURN_RIGHT, WalkConfig, WalkTo, report_walk_odometry
 from agent.world.frames import wrap_angle_rad
 from agent.world_model import WorldModel
+from agent.protocol.constants import CYCLE_S
 
 logger = logging.getLogger(__name__)
 
-CYCLE_S = 0.02
 KICK, STRONG = "kick", "kick_strong"
 LEFT_SUFFIX = "_left"
 TURNS = (TURN_LEFT, TURN_RIGHT)

@@ -22,8 +22,8 @@ from agent.motion import MotionController, MotionRequest
 from agent.skills.avoid import AvoidConfig, Avoider
 from agent.skills.base import Skill
 from agent.world_model import WorldModel
+from agent.protocol.constants import CYCLE_S
 
-CYCLE_S = 0.02
 FORWARD, BACKWARD, LEFT, RIGHT = "walk_forward", "walk_backward", "walk_left", "walk_right"
 WALKS = (FORWARD, BACKWARD, LEFT, RIGHT)
 TURN_LEFT, TURN_RIGHT = "turn_left", "turn_right"

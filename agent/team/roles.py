@@ -18,6 +18,7 @@ from dataclasses import dataclass
 
 from agent.formation import beam_spot
 from agent.world_model import WorldModel
+from agent.protocol.constants import HALF_LENGTH_M
 
 #: Weight of the angle term of the on-ball cost [m/deg] (REFERENCE §7.10).
 ANGLE_WEIGHT_M_PER_DEG = 0.01
@@ -30,7 +31,7 @@ REPORT_FRESH_S = 0.9
 #: The own ball sighting is used while younger than this [s]; else a teammate's (c) report.
 BALL_FRESH_S = 2.0
 #: Opponent goal centre, team frame [m] (field 30 × 20, REFERENCE §4).
-OPPONENT_GOAL_M = (15.0, 0.0)
+OPPONENT_GOAL_M = (HALF_LENGTH_M, 0.0)
 #: Goalkeeper's guard line x [m] and half-width of its guard segment [m] (goal 2.1 m wide).
 KEEPER_X_M = -14.2
 KEEPER_HALF_WIDTH_M = 0.8

@@ -1,4 +1,5 @@
-"""Field geometry in the world (field) frame of REFERENCE §1 and §4.1: landmarks, lines, sizes.
+"""Field geometry in the world (field) frame of REFERENCE §1 and §4.1: landmarks, lines, sizes (the numbers
+are agent.protocol.constants', which sim/ uses too; here the agent's views of them).
 
 Names are global (not flipped per team); :mod:`agent.world.frames` maps them into a team's own frame.
 """
@@ -7,29 +8,20 @@ from __future__ import annotations
 
 import math
 
-FIELD_LENGTH_M = 30.0
-FIELD_WIDTH_M = 20.0
-HALF_LENGTH_M = FIELD_LENGTH_M / 2.0
-HALF_WIDTH_M = FIELD_WIDTH_M / 2.0
-GOAL_HALF_WIDTH_M = 1.05
-GOAL_HEIGHT_M = 0.8
-PENALTY_AREA_X_M = 13.2
-PENALTY_AREA_HALF_WIDTH_M = 3.0
-CENTRE_CIRCLE_RADIUS_M = 2.0
-CENTRE_CIRCLE_CHORDS = 10
-BALL_RADIUS_M = 0.042
+from agent.protocol.constants import (BALL_RADIUS_M, CENTRE_CIRCLE_CHORDS, CENTRE_CIRCLE_RADIUS_M, FIELD_LENGTH_M,
+                                      FIELD_WIDTH_M, GOAL_HALF_WIDTH_M, GOAL_HEIGHT_M, HALF_LENGTH_M, HALF_WIDTH_M,
+                                      PENALTY_AREA_X_M)
+from agent.protocol.constants import LANDMARKS as SERVER_LANDMARKS
+from agent.protocol.constants import PENALTY_HALF_WIDTH_M as PENALTY_AREA_HALF_WIDTH_M
 
 #: Landmark name -> (x, y, z) in the world frame [m]; goal posts are seen at their top (REFERENCE §4.1).
+#: Flags first, as the agent has always iterated them; positions from agent.protocol.constants (shared with sim/).
 LANDMARKS: dict[str, tuple[float, float, float]] = {
-    "F1L": (-15.0, 10.0, 0.0),
-    "F2L": (-15.0, -10.0, 0.0),
-    "F1R": (15.0, 10.0, 0.0),
-    "F2R": (15.0, -10.0, 0.0),
-    "G1L": (-15.0, GOAL_HALF_WIDTH_M, GOAL_HEIGHT_M),
-    "G2L": (-15.0, -GOAL_HALF_WIDTH_M, GOAL_HEIGHT_M),
-    "G1R": (15.0, GOAL_HALF_WIDTH_M, GOAL_HEIGHT_M),
-    "G2R": (15.0, -GOAL_HALF_WIDTH_M, GOAL_HEIGHT_M),
-}
+    name: SERVER_LANDMARKS[name] for name in ("F1L", "F2L", "F1R", "F2R", "G1L", "G2L", "G1R", "G2R")}
+
+__all__ = ["BALL_RADIUS_M", "CENTRE_CIRCLE_CHORDS", "CENTRE_CIRCLE_RADIUS_M", "FIELD_LENGTH_M", "FIELD_LINES",
+           "FIELD_WIDTH_M", "GOAL_HALF_WIDTH_M", "GOAL_HEIGHT_M", "HALF_LENGTH_M", "HALF_WIDTH_M", "LANDMARKS",
+           "PENALTY_AREA_HALF_WIDTH_M", "PENALTY_AREA_X_M", "Segment"]
 
 Segment = tuple[tuple[float, float], tuple[float, float]]
 

@@ -14,13 +14,13 @@ import math
 from dataclasses import dataclass
 
 from agent.world import mat3
+from agent.protocol.constants import CYCLE_S
 
 GRAVITY_M_S2 = 9.81
 #: Accept accelerometer readings with | |a| - g | below this fraction of g.
 ACC_GATE = 0.15
 #: Correction gain k [1/s]: a tilt error decays with a time constant of about 1/k.
 DEFAULT_GAIN_PER_S = 2.0
-CYCLE_S = 0.02
 
 
 @dataclass(frozen=True, slots=True)

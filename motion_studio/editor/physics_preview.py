@@ -29,6 +29,7 @@ from agent.world_model import WorldModel
 from motions import Motion
 from sim.engine import FrozenReferee, SimEngine
 from sim.inprocess import InProcessHost
+from agent.protocol.constants import CYCLE_S
 
 logger = logging.getLogger(__name__)
 
@@ -125,7 +126,7 @@ class ControllerPlayer:
         self.motion = motion
         self.controller = MotionController(MotionLibrary({motion.name: motion}), load_dynamic_params(),
                                            robot_type=robot_type)
-        self.cycle_s = 0.02
+        self.cycle_s = CYCLE_S
         self.started = False
         self.calls_since_start = 0
 

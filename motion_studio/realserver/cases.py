@@ -22,8 +22,8 @@ from agent.skills.standup import StandUp
 from agent.skills.turn import TurnBy
 from agent.world_model import WorldModel
 from motion_studio.realserver.git_export import export_motions, short_revision
+from agent.protocol.constants import CYCLE_S
 
-CYCLE_S = 0.02
 #: Cycles before the move (scene, init, the agent's own beam), as motion_studio.scenarios.CONNECT_CYCLES.
 CONNECT_CYCLES = 6
 #: Cycles standing still after the move before the skill starts (the drop from z = 0.4 settles).

@@ -32,8 +32,8 @@ from typing import Any
 
 from motion_studio.realserver.paths import PROJECT_DIR
 from motion_studio.realserver.process import AGENT_PORT, MonitorLink, RealServer
+from agent.protocol.constants import CYCLE_S
 
-CYCLE_S = 0.02
 #: Server time the agents get in BeforeKickOff after the last one connected [s] (sim.match.MatchConfig default).
 KICK_OFF_WAIT_S = 3.0
 #: Cycles each new agent plays before the next connects (sim.match.run_match connects one per 2 cycles).

@@ -48,12 +48,12 @@ from motion_studio.kick_rollout import (STRIKE_SPEED_M_S, TRAP_FOOT_UP_M_S, TRAP
 from motion_studio.realserver.paths import checked_scripts_dir
 from motion_studio.realserver.process import AGENT_PORT, MonitorLink, RealServer, connect, reexec_in_netns
 from motion_studio.scenarios import Truth
+from agent.protocol.constants import BALL_RADIUS_M, CYCLE_S
 
 logger = logging.getLogger(__name__)
 
-CYCLE_S = 0.02
 TEAM, UNUM = "KickBench", 1
-BALL_Z_M = 0.042
+BALL_Z_M = BALL_RADIUS_M
 #: Cycles of the stance played where the robot lies or stands before it is moved (its joints reach the stance).
 RESET_POSE_CYCLES = 25
 #: The ball rests this long after the strike at the latest (REFERENCE §2.4: 5.2-6.5 s for 2-8 m/s) [s].

@@ -40,10 +40,10 @@ from agent.skills.behavior import SkillBehavior
 from agent.skills.standup import StandUp, at_rest, feet_force_n, upright_on_feet
 from agent.world_model import WorldModel
 from motions.model import Motion
+from agent.protocol.constants import CYCLE_S
 
 logger = logging.getLogger(__name__)
 
-CYCLE_S = 0.02
 TEAM, UNUM = "Bench", 1
 #: The robot's weight, 4.6071 kg for every type (REFERENCE §2.5) [N].
 WEIGHT_N = 4.6071 * 9.81

@@ -35,6 +35,7 @@ from agent.skills.kick import KickToward
 from agent.skills.base import PlayMotion
 from motion_studio.kick_rollout import SETTLE_CYCLES, STRIKE_SPEED_M_S, Placement, ball_spot, run_kick
 from motion_studio.scenarios import Scenario
+from agent.protocol.constants import CYCLE_S
 
 TARGETS = {"kick_m": 3.0, "kick_strong_m": 5.5, "aim_m": 8.0, "falls": 0}
 KINDS = ("kick", "kick_strong")
@@ -55,7 +56,6 @@ CHALLENGE_NEAR_M = 0.5
 CHALLENGE_WAIT_S = 3.0
 CHALLENGE_TIMEOUT_S = 7.0
 CHALLENGE_BEHIND_M = 1.0
-CYCLE_S = 0.02
 REST_SPEED_M_S = 0.01
 
 

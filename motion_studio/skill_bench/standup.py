@@ -34,6 +34,7 @@ from agent.motion import MotionController, MotionLibrary, default_library, load_
 from agent.skills.base import PlayMotion
 from motion_studio.scenarios import Scenario, Truth
 from motions.model import JointTarget, Motion
+from agent.protocol.constants import CYCLE_S
 
 SIDES = ("back", "front")
 #: Trials per side (and pushed trials) in a full / quick run.
@@ -60,7 +61,6 @@ HOLD_S = 1.0
 #: Success = standing within this time [s] (issue 6); a trial is cut at LIMIT_S.
 TARGET_S = 3.0
 LIMIT_S = 8.0
-CYCLE_S = 0.02
 #: Cycles in the walk stance before a trial starts; cycles of walking before a push.
 STANCE_CYCLES = 25
 WALK_CYCLES = 60

@@ -9,6 +9,9 @@ from __future__ import annotations
 import dataclasses
 import enum
 from dataclasses import dataclass
+from agent.protocol.constants import (AGENT_RADIUS_M, BALL_MASS_KG, BALL_RADIUS_M, CENTRE_CIRCLE_RADIUS_M, CYCLE_S,
+                                      FIELD_LENGTH_M, FIELD_WIDTH_M, GOAL_DEPTH_M, GOAL_HEIGHT_M, GOAL_WIDTH_M,
+                                      PENALTY_DEPTH_M)
 
 # REFERENCE §4.2: the index is what monitors use.
 PLAY_MODES: tuple[str, ...] = (
@@ -69,24 +72,24 @@ class RefereeConfig:
     start_any_field_position.
     """
 
-    field_length_m: float = 30.0
-    field_width_m: float = 20.0
+    field_length_m: float = FIELD_LENGTH_M
+    field_width_m: float = FIELD_WIDTH_M
     field_height_m: float = 40.0
-    goal_width_m: float = 2.1
-    goal_depth_m: float = 0.6
-    goal_height_m: float = 0.8
+    goal_width_m: float = GOAL_WIDTH_M
+    goal_depth_m: float = GOAL_DEPTH_M
+    goal_height_m: float = GOAL_HEIGHT_M
     border_size_m: float = 0.0
-    penalty_length_m: float = 1.8
+    penalty_length_m: float = PENALTY_DEPTH_M
     penalty_width_m: float = 3.9
-    ball_radius_m: float = 0.042
-    ball_mass_kg: float = 0.026
-    agent_radius_m: float = 0.4
-    free_kick_distance_m: float = 2.0
+    ball_radius_m: float = BALL_RADIUS_M
+    ball_mass_kg: float = BALL_MASS_KG
+    agent_radius_m: float = AGENT_RADIUS_M
+    free_kick_distance_m: float = CENTRE_CIRCLE_RADIUS_M
     free_kick_move_dist_m: float = 2.5
     kick_repel_dist_m: float = 0.5
     goal_kick_dist_m: float = 1.0
 
-    cycle_s: float = 0.02
+    cycle_s: float = CYCLE_S
     half_time_s: float = 300.0
     goal_pause_time_s: float = 3.0
     kick_in_pause_time_s: float = 1.0

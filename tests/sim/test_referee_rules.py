@@ -10,8 +10,7 @@ import pytest
 from sim.referee import Referee
 from sim.rules.params import PLAY_MODES, FoulType, default_config
 from sim.world_api import RobotState
-
-CYCLE_S = 0.02
+from agent.protocol.constants import CYCLE_S
 
 
 @dataclass
