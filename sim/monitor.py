@@ -23,6 +23,7 @@ from sim.monitor_scene import (IDENTITY, Decimals, Matrix, Node, SceneWriter, ba
 from sim.rules.params import PLAY_MODES, RefereeConfig, default_config
 from sim.rules.self_collision import BodyPoseArrays
 from agent.protocol.constants import CYCLE_S
+from sim.errors import MonitorLogError
 
 logger = logging.getLogger(__name__)
 
@@ -306,7 +307,7 @@ class MonitorLogWriter:
                  step_cycles: int = DEFAULT_LOG_STEP_CYCLES, full_state_every_s: float = DEFAULT_FULL_STATE_EVERY_S,
                  config: RefereeConfig | None = None, decimals: Decimals = DEFAULT_LOG_DECIMALS) -> None:
         if step_cycles < 1:
-            raise ValueError(f"step_cycles must be >= 1, got {step_cycles}")
+            raise MonitorLogError(f"step_cycles must be >= 1, got {step_cycles}")
         self._owns = not hasattr(out, "write")
         self._out: TextIO = _open_log_for_writing(Path(out)) if self._owns else out  # type: ignore[arg-type]
         self.snapshot_fn = snapshot_fn

@@ -79,6 +79,7 @@ import tomllib
 from dataclasses import dataclass, fields, replace
 from pathlib import Path
 from agent.protocol.constants import CYCLE_S
+from sim.errors import PhysicsFileError
 
 
 @dataclass(frozen=True)
@@ -158,7 +159,7 @@ def physics_file() -> Path | None:
     if chosen:
         path = Path(chosen)
         if not path.is_file():
-            raise ValueError(f"{PHYSICS_FILE_ENV}={chosen}: no such physics file")
+            raise PhysicsFileError(f"{PHYSICS_FILE_ENV}={chosen}: no such physics file")
         return path
     return CALIBRATED_FILE if CALIBRATED_FILE.is_file() else None
 
@@ -172,12 +173,12 @@ def load_physics_file(path: Path) -> dict[str, object]:
     try:
         table = tomllib.loads(path.read_text(encoding="utf-8")).get("physics", {})
     except tomllib.TOMLDecodeError as error:
-        raise ValueError(f"{path}: not TOML ({error})") from None
+        raise PhysicsFileError(f"{path}: not TOML ({error})") from None
     known = {f.name for f in fields(PhysicsParams)}
     values: dict[str, object] = {}
     for key, value in table.items():
         if key not in known:
-            raise ValueError(f"{path}: unknown physics parameter {key!r}")
+            raise PhysicsFileError(f"{path}: unknown physics parameter {key!r}; known: {', '.join(sorted(known))}")
         values[key] = tuple(value) if isinstance(value, list) else value
     return values
 

@@ -23,6 +23,7 @@ from sim.rules.placement import Key, Placer
 from sim.rules.roster import Assignment, Roster
 from sim.rules.self_collision import SelfCollisionRule
 from sim.world_api import RobotState, WorldView
+from sim.errors import RuleError
 
 logger = logging.getLogger(__name__)
 
@@ -195,7 +196,7 @@ class Referee:
             ValueError: unknown name (the message lists the known ones).
         """
         if name not in PLAY_MODE_INDEX:
-            raise ValueError(f"unknown play mode {name!r}; known: {', '.join(PLAY_MODES)}")
+            raise RuleError(f"unknown play mode {name!r}; known: {', '.join(PLAY_MODES)}", cycle=self.cycle)
         self._set_mode(name)
 
     def set_game_time(self, time_s: float) -> None:
@@ -614,5 +615,5 @@ def _parse_side(side: str | None) -> str | None:
         return None
     lowered = side.lower()
     if lowered not in SIDES:
-        raise ValueError(f"unknown side {side!r}; expected Left, Right or None")
+        raise RuleError(f"unknown side {side!r}; expected Left, Right or None")
     return lowered

@@ -22,6 +22,7 @@ import numpy as np
 
 from agent.protocol.monitor import parse_monitor
 from sim.monitor_scene import robot_body_order
+from sim.errors import MonitorLogError
 
 logger = logging.getLogger(__name__)
 
@@ -247,7 +248,7 @@ def replay_log(path: str | Path, html_out: str | Path | None = None, *, max_fram
 
     frames = list(read_log(path))
     if not frames:
-        raise ValueError(f"{path}: no full-state line, nothing to replay")
+        raise MonitorLogError(f"{path}: no full-state line, nothing to replay")
     robots: dict[str, RobotPose] = {}
     for frame in frames:
         for name, robot in frame.robots.items():

@@ -36,6 +36,7 @@ from sim.effectors import MotorBank
 from sim.field import BALL_MASS_KG, BALL_RADIUS_M, add_static_geometry
 from sim.physics_params import PhysicsParams, default_physics_params
 from sim.world_api import RobotState
+from sim.errors import UnknownRobotError, WorldError
 
 logger = logging.getLogger(__name__)
 #: MuJoCo's checks that reset the whole world (to the model's initial state) when they trip.
@@ -176,15 +177,15 @@ class World:
         """Build a robot (REFERENCE §3.2 step 2): torso at ``position_m``, zero pose, facing +y, no team.
 
         Raises:
-            ValueError: ``key`` is taken or the world is full.
+            WorldError: ``key`` is taken or the world is full (a ValueError).
             kinematics.SpecError: unknown robot type.
         """
         if key in self.by_key:
-            raise ValueError(f"robot key {key} already in the world")
+            raise WorldError("robot key already in the world", agent=key)
         used = {r.slot for r in self.by_key.values()}
         free = [s for s in range(MAX_ROBOTS) if s not in used]
         if not free:
-            raise ValueError(f"the world holds at most {MAX_ROBOTS} robots")
+            raise WorldError(f"the world holds at most {MAX_ROBOTS} robots", agent=key)
         spec = robot_spec(robot_type)
         robot = Robot(key=key, robot_type=robot_type, spec=spec, prefix=f"r{key}_", slot=free[0])
         child = self._robot_template(robot_type).copy()
@@ -714,11 +715,12 @@ class World:
         return self.data.xpos[body]
 
     def robot_of(self, side: str, unum: int) -> Robot:
-        """The robot with this side and number; KeyError when none."""
+        """The robot with this side and number; UnknownRobotError (a KeyError) when none."""
         for robot in self.by_key.values():
             if robot.side == side and robot.unum == unum:
                 return robot
-        raise KeyError(f"no robot {side} {unum}")
+        raise UnknownRobotError(f"no robot {side} {unum}; robots: "
+                                f"{sorted((r.side, r.unum) for r in self.by_key.values() if r.side)}")
 
     # ---- WorldView -----------------------------------------------------------------------------------
     def ball_position(self) -> tuple[float, float, float]:

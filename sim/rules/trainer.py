@@ -16,6 +16,7 @@ from collections.abc import Sequence
 from agent.protocol.sexpr import parse_sexpr
 from sim.referee import Referee
 from sim.world_api import WorldView
+from sim.errors import TrainerCommandError
 
 logger = logging.getLogger(__name__)
 
@@ -33,11 +34,11 @@ def apply_trainer_message(payload: bytes | str, referee: Referee, world: WorldVi
         name = command[0] if command and isinstance(command[0], str) else None
         try:
             if name is None:
-                raise ValueError("a command must start with its name")
+                raise TrainerCommandError("a command must start with its name")
             if _apply(name, command[1:], referee, world):
                 applied.append(name)
         except (ValueError, KeyError, IndexError, TypeError) as error:
-            logger.warning("trainer command %s rejected: %s", _text(command), error)
+            logger.warning("cycle %d: trainer command %s rejected: %s", referee.cycle, _text(command), error)
     return applied
 
 
@@ -52,7 +53,7 @@ def _apply(name: str, args: Sequence[object], referee: Referee, world: WorldView
         pos = _vector(args, "pos", 3)
         vel = _vector(args, "vel", 3)
         if pos is None and vel is None:
-            raise ValueError("expected (pos x y z) and/or (vel x y z)")
+            raise TrainerCommandError("expected (pos x y z) and/or (vel x y z)")
         world.set_ball(tuple(pos) if pos is not None else world.ball_position(),  # type: ignore[arg-type]
                        tuple(vel) if vel is not None else world.ball_velocity())  # type: ignore[arg-type]
     elif name == "agent":
@@ -65,7 +66,7 @@ def _apply(name: str, args: Sequence[object], referee: Referee, world: WorldView
     elif name in _IGNORED:
         return False
     else:
-        raise ValueError(f"unknown trainer command {name!r}")
+        raise TrainerCommandError(f"unknown trainer command {name!r}")
     return True
 
 
@@ -73,10 +74,10 @@ def _agent(args: Sequence[object], world: WorldView) -> None:
     unum = _vector(args, "unum", 1)
     team = _words(args, "team")
     if unum is None or team is None:
-        raise ValueError("expected (unum n) and (team Left|Right)")
+        raise TrainerCommandError("expected (unum n) and (team Left|Right)")
     side = team.lower()
     if side not in ("left", "right"):
-        raise ValueError(f"unknown team {team!r}; expected Left or Right")
+        raise TrainerCommandError(f"unknown team {team!r}; expected Left or Right")
     pos = _vector(args, "pos", 3)
     move = _vector(args, "move", 4)
     # (move x y z angle): angle is SimSpark's yaw, 0 = facing +y, so heading (0 = facing +x) = angle + 90.
@@ -89,14 +90,14 @@ def _agent(args: Sequence[object], world: WorldView) -> None:
 def _atom(args: Sequence[object], index: int) -> str:
     value = args[index]
     if not isinstance(value, str):
-        raise ValueError(f"expected a word, got {_text(value)}")
+        raise TrainerCommandError(f"expected a word, got {_text(value)}")
     return value
 
 
 def _finite(token: str) -> float:
     value = float(token)
     if not math.isfinite(value):
-        raise ValueError(f"expected a finite number, got {token!r}")
+        raise TrainerCommandError(f"expected a finite number, got {token!r}")
     return value
 
 
@@ -111,7 +112,7 @@ def _vector(args: Sequence[object], key: str, size: int) -> list[float] | None:
     for item in args:
         if isinstance(item, list) and item and item[0] == key:
             if len(item) != size + 1 or not all(isinstance(v, str) for v in item[1:]):
-                raise ValueError(f"({key} ...) needs {size} numbers, got {_text(item)}")
+                raise TrainerCommandError(f"({key} ...) needs {size} numbers, got {_text(item)}")
             return [_finite(v) for v in item[1:]]  # type: ignore[arg-type]
     return None
 
