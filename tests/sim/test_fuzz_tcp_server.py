@@ -22,7 +22,7 @@ from sim.rules.trainer import apply_trainer_message
 from sim.tcp_server import SimServer
 from tests.sim.test_referee_rules import FakeWorld
 
-SAMPLES = Path("/work/shared/samples")
+SAMPLES = Path(__file__).resolve().parents[3] / "shared" / "samples"  # <project>/../shared/samples
 MAX_MESSAGES = 20000
 TIME_BUDGET_S = 25.0
 # With the MuJoCo engine every fuzz (scene ...) builds a robot (a model recompile), so fewer messages.

@@ -12,7 +12,7 @@ from sim.monitor import GameView, MonitorLogWriter, MonitorStream, RobotView, Sc
 from sim.monitor_scene import robot_body_order, translation
 from sim.rules.params import default_config
 
-SAMPLE = Path("/work/shared/samples/rcssserver3d-0.7.3_monitor_first_frames.txt")
+SAMPLE = Path(__file__).resolve().parents[3] / "shared" / "samples" / "rcssserver3d-0.7.3_monitor_first_frames.txt"
 BALL_INDEX = 35  # 2 lights, field, sky, 2 goals, 4 walls, 4 flags, 21 line transforms
 
 

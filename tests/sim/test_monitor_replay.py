@@ -12,7 +12,7 @@ from sim.monitor import GameView, MonitorLogWriter, RobotView, SceneSnapshot
 from sim.monitor_scene import robot_body_order, translation
 from sim.replay import read_log, replay_log
 
-SAMPLE = Path("/work/shared/samples/rcssserver3d-0.7.3_monitor_first_frames.txt")
+SAMPLE = Path(__file__).resolve().parents[3] / "shared" / "samples" / "rcssserver3d-0.7.3_monitor_first_frames.txt"
 
 
 def test_reads_the_real_server_sample() -> None:
