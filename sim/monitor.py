@@ -316,9 +316,12 @@ class MonitorLogWriter:
         self.stream = MonitorStream(config, decimals)
         self.lines = 0
         self._last_full_cycle: int | None = None
+        self._last_cycle: int | None = None
+        self._written_cycle: int | None = None
 
     def on_cycle(self, cycle: int) -> None:
         """Write the line due at this cycle, if any."""
+        self._last_cycle = cycle
         if self._last_full_cycle is not None and cycle % self.step_cycles != 0:
             return
         full = self._last_full_cycle is None or cycle - self._last_full_cycle >= self.full_every_cycles
@@ -331,8 +334,13 @@ class MonitorLogWriter:
             self._last_full_cycle = cycle
         self._out.write(text + "\n")
         self.lines += 1
+        self._written_cycle = cycle
 
     def close(self) -> None:
+        """Write the last cycle's state unless its line is already there (with a line every 0.2 s the end of
+        a match, its final score or a last play mode, would otherwise be lost), then close."""
+        if self._last_cycle is not None and self._last_cycle != self._written_cycle:
+            self.write(self.snapshot_fn(), cycle=self._last_cycle)
         self._out.flush()
         if self._owns:
             self._out.close()

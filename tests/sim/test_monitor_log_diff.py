@@ -127,3 +127,16 @@ def test_the_compact_full_state_keeps_the_real_servers_scene_tree() -> None:
                                                   full=True)
     assert _skeleton(ours) == _skeleton(real)
     assert len(ours) < 0.85 * len(real)
+
+
+def test_the_last_cycle_is_logged_when_the_log_closes(tmp_path: Path) -> None:
+    """A line every 10 cycles, and the state of the last cycle at close: a final score is never lost."""
+    snapshots = _snapshots()[:25]
+    path = tmp_path / "end.log"
+    with open(path, "w") as out:
+        writer = MonitorLogWriter(out, lambda: snapshots[cycle])
+        for cycle in range(len(snapshots)):
+            writer.on_cycle(cycle)
+        writer.close()
+    times = [frame.time_s for frame in read_log(path)]
+    assert times == pytest.approx([0.0, 0.2, 0.4, 0.48])
