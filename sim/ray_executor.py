@@ -24,6 +24,8 @@ from typing import Any
 logger = logging.getLogger(__name__)
 
 #: ``--ray`` value that starts a private Ray instance on this machine instead of joining a cluster.
+#: Address a local Ray instance binds (its GCS, raylet and object-manager ports).
+LOOPBACK = "127.0.0.1"
 LOCAL = "local"
 
 
@@ -77,8 +79,8 @@ class RayExecutor(Executor):
             if address != LOCAL:
                 check_reachable(address)
             try:
-                if address == LOCAL:
-                    ray.init(num_cpus=num_cpus, **options)
+                if address == LOCAL:  # a Ray of our own serves this process only: loopback, as every server here
+                    ray.init(num_cpus=num_cpus, _node_ip_address=LOOPBACK, **options)
                 else:
                     ray.init(address=address, **options)
             except (ConnectionError, RuntimeError, ValueError) as error:
