@@ -44,6 +44,11 @@ NORMAL_KICK_GOAL_DISTANCE_M = 2.5
 FACE_TOLERANCE_DEG = 20.0
 #: Play modes in which nobody moves (REFERENCE §4.2).
 FROZEN_MODES = frozenset({"BeforeKickOff", "Goal_Left", "Goal_Right", "GameOver", "unknown"})
+#: The on-ball player shoots (the kick motion) instead of dribbling on when the goal is this near [m]: the real
+#: kick flies 3.2-4.6 m, ours 1.5-2.8 m.
+SHOOT_RANGE_M = 4.0
+#: After a shot, or a stop whose ball was not in the window, the dribble goes on this long first [s].
+SHOT_COOLDOWN_S = 3.0
 #: A set-piece taker kicks at once when facing the opponent goal within this [deg] (the kick follows the heading).
 SET_PIECE_AIM_DEG = 12.0
 #: Distance the players keep from the ball at the opponents' set pieces [m] (the referee clears 2 m).
@@ -68,6 +73,7 @@ class SoccerBehavior:
         """Who took the own team's last set piece (it may not touch the ball again first)."""
         self._world: WorldModel | None = None
         self._set_piece_aim: tuple[float, float] | None = None
+        self._shot_after_s: float | None = None
         self._key: Hashable = None
         self._target: tuple[float, float] | None = None
 
@@ -124,13 +130,49 @@ class SoccerBehavior:
 
     def _play_ball(self, ball: tuple[float, float]) -> None:
         """Dribble the ball toward the opponent goal (``agent.skills.dribble``): on our simulator it moved the
-        ball 10-13 m in 40 s where the kick's line-up took 13-35 s per 2.4 m kick."""
-        target = goal_target(ball, seen_opponents(self._world)) if self._world is not None else (15.5, 0.0)
+        ball 10-13 m in 40 s where the kick's line-up took 13-35 s per 2.4 m kick. Within ``SHOOT_RANGE_M``
+        of the goal a dribble that has the ball at its feet, facing the goal, stops and shoots (the dribble
+        brought the ball to 2 m before the empty goal and then swung round it for 30 s)."""
+        world = self._world
+        target = goal_target(ball, seen_opponents(world)) if world is not None else (15.5, 0.0)
         skill = self.skills.skill
+        if self._key == ("shoot",):
+            if skill is not None and not skill.done:
+                return
+            self._shot_after_s = world.now_s + SHOT_COOLDOWN_S if world is not None else None
+        if self._key == ("shoot_settle",) and world is not None:
+            if not (self.motion.idle or (self.motion.motion_name == STAND and skill is not None and skill.done)):
+                return
+            if self._shot_lined_up(world, target, standing=True):
+                self._use(("shoot",), lambda: PlayMotion(KICK))
+                return
+            self._shot_after_s = world.now_s + SHOT_COOLDOWN_S
+        if (world is not None and KICK in self.motion.library and isinstance(skill, Dribble) and skill.pushing
+                and math.hypot(target[0] - ball[0], target[1] - ball[1]) <= SHOOT_RANGE_M
+                and (self._shot_after_s is None or world.now_s >= self._shot_after_s)
+                and self._shot_lined_up(world, target, standing=False)):
+            self._use(("shoot_settle",), lambda: PlayMotion(STAND))
+            return
         if self._key == ("dribble",) and isinstance(skill, Dribble) and skill.target != target \
                 and not skill.pushing:
             skill.target = target  # a new aim point: keep the skill (and its steering state)
         self._use(("dribble",), lambda: Dribble(*target, ball_source=roles.ball_belief))
+
+    def _shot_lined_up(self, world: WorldModel, target: tuple[float, float], standing: bool) -> bool:
+        """The ball at the feet in the kick window (``set_pieces.kick_window``; walking, a looser one: the
+        stop moves the robot on a little) and the robot facing the target within ``SET_PIECE_AIM_DEG``."""
+        seen = world.ball
+        if seen is None or seen.forward_m is None or seen.age_s(world.now_s) > 0.2:
+            return False
+        spot = self.motion.library.get(KICK).constants
+        forward = seen.forward_m - float(spot.get("ball_forward_m", 0.125))
+        left = (seen.left_m or 0.0) - float(spot.get("ball_left_m", 0.0))
+        if standing:
+            in_window = kick_window((seen.forward_m, seen.left_m or 0.0), float(spot.get("ball_forward_m", 0.125)),
+                                    float(spot.get("ball_left_m", 0.0)))
+        else:
+            in_window = 0.0 <= forward <= 0.25 and abs(left) <= 0.06
+        return in_window and self._facing(world, target, SET_PIECE_AIM_DEG)
 
     def _take_set_piece(self, world: WorldModel, ball: tuple[float, float]) -> None:
         """One kick toward the opponent goal (the taker may touch the ball only once): the kick motion as
