@@ -23,6 +23,7 @@ import threading
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from typing import NoReturn
 
 from agent.agent import Agent, AgentConfig
 from agent.drawing.udp import DEFAULT_DRAW_HOST, DEFAULT_DRAW_PORT, RoboVizDrawer, drawer_from_env
@@ -186,11 +187,25 @@ def _robot_type_arg(text: str) -> int | str:
     return "auto" if value is None else value
 
 
+class _OneLineErrorParser(argparse.ArgumentParser):
+    """argparse with its errors on one line (no usage block above them): the toolkit's CLI rule (issue 16)."""
+
+    def error(self, message: str) -> NoReturn:
+        self.exit(2, f"{self.prog}: error: {' '.join(message.split())} (see {self.prog} --help)\n")
+
+
+def _port_arg(text: str) -> int:
+    port = int(text)
+    if not 1 <= port <= 65535:
+        raise argparse.ArgumentTypeError(f"port must be 1-65535, got {port}")
+    return port
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The usual rcssserver3d agent flags."""
-    parser = argparse.ArgumentParser(prog="python -m agent", description="Run one Nao soccer agent over TCP.")
+    parser = _OneLineErrorParser(prog="python -m agent", description="Run one Nao soccer agent over TCP.")
     parser.add_argument("--host", default=DEFAULT_HOST, help="server address (default 127.0.0.1)")
-    parser.add_argument("--port", type=int, default=DEFAULT_PORT, help="agent port (default 3100)")
+    parser.add_argument("--port", type=_port_arg, default=DEFAULT_PORT, help="agent port (default 3100)")
     parser.add_argument("--team", default="Nao3D", help="team name (default Nao3D)")
     parser.add_argument("--unum", type=int, default=0, help="uniform number 1-11, 0 = next free (default 0)")
     parser.add_argument("--type", dest="robot_type", type=_robot_type_arg, default="auto",

@@ -46,3 +46,13 @@ def test_error_is_one_line_with_exit_code_2(args, words, tmp_path):
     assert "Traceback" not in result.stderr
     for word in words:
         assert word in lines[0], lines[0]
+
+
+@pytest.mark.parametrize(("args", "words"), [(["--type", "9"], ["--type", "0-4 or auto"]),
+                                             (["--port", "99999"], ["--port", "1-65535"]),
+                                             (["--localization", "gps"], ["--localization", "ekf"])])
+def test_the_agent_command_errors_are_one_line_too(args, words):
+    result = subprocess.run([sys.executable, "-m", "agent", *args], capture_output=True, text=True, timeout=120)
+    assert result.returncode == 2
+    lines = [line for line in result.stderr.splitlines() if line.strip()]
+    assert len(lines) == 1 and all(word in lines[0] for word in words), result.stderr
