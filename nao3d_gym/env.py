@@ -16,6 +16,7 @@ import gymnasium
 import numpy as np
 from gymnasium import spaces
 
+from agent.protocol.constants import BALL_RADIUS_M, CYCLE_S
 from agent.protocol.effectors import Init, Scene, format_actions, joint_velocity_template
 from agent.protocol.sense import parse_sense
 from kinematics.spec import ROBOT_TYPES, robot_spec
@@ -28,10 +29,9 @@ from sim.vision import VisionConfig
 TEAM = "Nao3DGym"
 #: Where an episode starts: the torso above the field point (x, y) [m] facing +x, the ball off the path.
 START_XY_M = (-5.0, 0.0)
-BALL_START_M = (0.0, 5.0, 0.042)
+BALL_START_M = (0.0, 5.0, BALL_RADIUS_M)
 #: Gap [m] between the soles and the grass when the robot is put down (it lands within the settle cycles).
 DROP_GAP_M = 0.005
-CYCLE_S = 0.02  # one step = one SimSpark cycle (REFERENCE §3.9)
 
 
 class Nao3DEnv(gymnasium.Env):

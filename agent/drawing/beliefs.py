@@ -12,14 +12,14 @@ from typing import Any
 
 from agent.agent import Agent
 from agent.drawing import roboviz
+from agent.protocol.constants import BALL_RADIUS_M
 
 #: A teammate or the ball is drawn as current when heard or seen within this time [s], greyed after.
 FRESH_S = 1.0
 SELF_RADIUS_M = 0.25
 HEADING_LENGTH_M = 0.5
 TEAMMATE_RADIUS_M = 0.2
-BALL_RADIUS_M = 0.06
-BALL_Z_M = 0.042
+BALL_DRAWN_RADIUS_M = 0.06   # a little larger than the ball, so it shows beside RoboViz's own ball
 ANNOTATION_HEIGHT_M = 0.9
 TEAM_COLOURS = {"left": (40, 110, 255), "right": (255, 60, 40)}
 BALL_COLOUR = (255, 140, 0)
@@ -67,7 +67,7 @@ def belief_packets(agent: Agent) -> list[bytes]:
     if ball is not None and ball.position is not None:
         bx, by = frame.point_to_world(*ball.position)
         fresh = ball.age_s(now) <= FRESH_S
-        packets.append(roboviz.sphere((bx, by, BALL_Z_M), BALL_RADIUS_M, BALL_COLOUR if fresh else STALE_COLOUR, name))
+        packets.append(roboviz.sphere((bx, by, BALL_RADIUS_M), BALL_DRAWN_RADIUS_M, BALL_COLOUR if fresh else STALE_COLOUR, name))
     for unum, mate in sorted(world.teammates.items()):
         if mate.position is None or unum == game.unum:
             continue
