@@ -23,15 +23,26 @@ WATCHDOG_PERIOD_S = 0.25
 PR_SET_PDEATHSIG = 1
 
 
-def _set_parent_death_signal(signal_number: int) -> bool:
-    """Ask Linux to send ``signal_number`` here when the forking thread ends; False where not available."""
+def _load_libc() -> ctypes.CDLL | None:
     if not sys.platform.startswith("linux"):
-        return False
+        return None
     try:
-        libc = ctypes.CDLL(ctypes.util.find_library("c") or "libc.so.6", use_errno=True)
-        return libc.prctl(PR_SET_PDEATHSIG, signal_number, 0, 0, 0) == 0
+        return ctypes.CDLL(ctypes.util.find_library("c") or "libc.so.6", use_errno=True)
     except OSError:
-        return False
+        return None
+
+
+#: libc, loaded once at import: ``set_parent_death_signal`` may run as a ``preexec_fn`` between fork and exec,
+#: where loading a library (locks, allocation) could deadlock a threaded parent.
+_LIBC = _load_libc()
+
+
+def set_parent_death_signal(signal_number: int = signal.SIGTERM) -> bool:
+    """Ask Linux to send ``signal_number`` here when the forking thread ends; False where not available.
+
+    Usable as ``subprocess.Popen(..., preexec_fn=set_parent_death_signal)`` for children that are not Python.
+    """
+    return _LIBC is not None and _LIBC.prctl(PR_SET_PDEATHSIG, int(signal_number), 0, 0, 0) == 0
 
 
 def _watch(parent_pid: int, period_s: float) -> None:
@@ -55,7 +66,7 @@ def end_with_parent(parent_pid: int | None = None, death_signal: bool = False,
     """
     parent = os.getppid() if parent_pid is None else parent_pid
     if death_signal:
-        _set_parent_death_signal(signal.SIGTERM)
+        set_parent_death_signal(signal.SIGTERM)
     if os.getppid() != parent:
         os._exit(0)
     threading.Thread(target=_watch, args=(parent, period_s), name="end-with-parent", daemon=True).start()
