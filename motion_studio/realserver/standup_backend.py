@@ -22,6 +22,7 @@ import numpy as np
 from motion_studio.realserver.rollout_standup import RealStart, StandUpOutcome, real_starts
 from motion_studio.realserver.standup_pool import RolloutPool, RolloutRequest
 from motions.authoring.standup import STANDUPS, StandUpParams, build_standup, stance_params
+from kinematics.child_process import end_with_parent
 
 #: Backends of the stand-up tuner besides the default in-process MuJoCo one.
 BACKENDS = ("real", "both")
@@ -127,4 +128,4 @@ def make_evaluator(section: str, backend: str, count: int, seed: int, noise: boo
         raise ValueError(f"unknown backend {backend!r}; known: mujoco, {', '.join(BACKENDS)}")
     ours = tuple(mujoco_starts) if backend == "both" else ()
     return RealEvaluator(section, real_starts(STANDUPS[section], count, seed, noise), RolloutPool(workers),
-                         target_s, time_weight, ours, sim_weight, ProcessPoolExecutor(workers) if ours else None)
+                         target_s, time_weight, ours, sim_weight, ProcessPoolExecutor(workers, initializer=end_with_parent) if ours else None)
