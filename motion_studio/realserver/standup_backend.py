@@ -127,5 +127,6 @@ def make_evaluator(section: str, backend: str, count: int, seed: int, noise: boo
     if backend not in BACKENDS:
         raise ValueError(f"unknown backend {backend!r}; known: mujoco, {', '.join(BACKENDS)}")
     ours = tuple(mujoco_starts) if backend == "both" else ()
+    pool = ProcessPoolExecutor(workers, initializer=end_with_parent) if ours else None  # workers die with us
     return RealEvaluator(section, real_starts(STANDUPS[section], count, seed, noise), RolloutPool(workers),
-                         target_s, time_weight, ours, sim_weight, ProcessPoolExecutor(workers, initializer=end_with_parent) if ours else None)
+                         target_s, time_weight, ours, sim_weight, pool)
