@@ -59,3 +59,15 @@ def test_an_unknown_parameter_is_one_line_naming_it(capsys):
     error = capsys.readouterr().err.strip()
     assert error.startswith("motion-studio tune kick: error: --only: unknown parameter 'strike_speed_m_s'; known: ")
     assert "\n" not in error
+
+
+def test_a_turn_tuning_run_on_the_simulator_prints_where_its_files_are(tmp_path):
+    """A real (short) run: three candidates of the quick turn-gain problem through the trust region."""
+    run_dir = tmp_path / "turn"
+    result = _run("turn", "--quick", "--evaluations", "3", "--run-dir", str(run_dir))
+    assert result.exit_code == 0, result.output
+    for line in (f"plots: {run_dir / 'objective.png'}, {run_dir / 'curve.png'}", f"checkpoint: {run_dir / 'checkpoint.pkl'}",
+                 f"trace: {run_dir / 'trace.jsonl'}"):
+        assert line in result.output
+    assert (run_dir / "curve.png").stat().st_size > 5000
+    assert "TurnBy check" in result.output and "curve: gains" in result.output
