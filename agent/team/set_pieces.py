@@ -13,11 +13,12 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from agent.team.roles import Candidate
+from agent.team.roles import GOALKEEPER_UNUM, Candidate
 from agent.world_model import WorldModel
 
-#: The set-piece taker stays out of the on-ball choice at most this long after its set piece ended [s].
-TAKER_WAIT_S = 8.0
+#: The set-piece taker stays out of the on-ball choice at most this long after its set piece ended [s] (with 8 s
+#: the taker went back to its kick-off ball before the teammate had reached it: free kick for the opponents).
+TAKER_WAIT_S = 30.0
 #: Another player this near the ball (torso centre) counts as having touched it [m].
 TOUCH_NEAR_M = 0.3
 #: Play modes of set pieces (the suffix names the team taking it).
@@ -64,6 +65,8 @@ class TakerMemory:
         if world.now_s - self.since_s > TAKER_WAIT_S or _someone_else_at(world, ball, players, self.taker):
             self.taker, self.since_s = None, None
             return None
+        if not any(p.unum not in (self.taker, GOALKEEPER_UNUM) for p in players):
+            return None  # nobody else can play it (fallen, silent): the taker must, double touch or not
         return self.taker
 
 
