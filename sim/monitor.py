@@ -29,9 +29,10 @@ logger = logging.getLogger(__name__)
 
 # REFERENCE §5.3: a log line every monitor step, a full state every 3 s and on every scene change.
 DEFAULT_FULL_STATE_EVERY_S = 3.0
-# The server's $monitorLoggerStep (0.2 s), which RoboViz's log player also assumes per frame. Measured with
-# 11 v 11 for 60 s (benchmarks/bench_monitor_log.py): 1.26 MB gzipped, x10 = 12.6 MB for a full match; a line
-# every 0.04 s would be 52 MB, the server's own number spelling at 0.2 s 30 MB.
+# The server's $monitorLoggerStep (0.2 s), which RoboViz's log player also assumes per frame. Measured
+# (benchmarks/bench_monitor_log.py): a 10-minute 11 v 11 match 10.5 MB gzipped (93 MB plain), 3 v 3 3.3 MB;
+# for 60 s of 11 v 11, a line every 0.04 s would be 5.2 MB (x10 for a match), the server's own number
+# spelling at 0.2 s 3.0 MB.
 DEFAULT_LOG_STEP_CYCLES = 10
 DEFAULT_LOG_DECIMALS: Decimals = (2, 3)
 
