@@ -27,9 +27,6 @@ from agent.world.frames import wrap_angle_rad
 from agent.world_model import WorldModel
 
 CYCLE_S = 0.02
-#: The walk's steering while dribbling: a shorter stand after each turn motion than the walk skill's 0.3 s
-#: (going round the ball takes several 20-40 deg turns in a row).
-DRIBBLE_WALK = WalkConfig(settle_after_turn_s=0.1)
 
 
 @dataclass(frozen=True)
@@ -51,8 +48,6 @@ class DribbleConfig:
     """Pushing goes on while the ball lies within this of the robot's walking line (ego left) [m]..."""
     push_max_deg: float = 35.0
     """... and the robot's heading is within this of the ball -> target direction [deg]."""
-    on_line_m: float = 0.15
-    """Behind the ball and this near the target line, the robot heads for the point beyond the ball [m]."""
     keep_across_m: float = 0.35
     """Pushing goes on while the robot stays within this of the target line [m]..."""
     keep_lateral_m: float = 0.2
@@ -98,7 +93,7 @@ class Dribble(Skill):
         robot walks there and looks for it instead of standing with its back to it."""
         self.target = (float(target_x_m), float(target_y_m))
         self.config = config or DribbleConfig()
-        self.walk_config = walk_config or DRIBBLE_WALK
+        self.walk_config = walk_config or WalkConfig()
         self.name = f"dribble toward ({target_x_m:.1f}, {target_y_m:.1f})"
         self.reset()
 
@@ -216,10 +211,7 @@ class Dribble(Skill):
             back = min(c.behind_max_m, c.behind_per_m * abs(across))
             self.pushing = (back <= c.push_start_m and abs(ball_left) <= c.push_lateral_m and ball_forward > 0.0
                             and heading_error <= c.push_max_deg)
-            if self.pushing or abs(across) <= c.on_line_m:
-                # On the line (or nearly): walk at the point beyond the ball, turning toward it first; an
-                # approach point just behind the ball made the robot arrive beside it at an angle and
-                # circle it (26 s of walking near a static ball in a 120 s match).
+            if self.pushing:
                 return (ball[0] + c.push_through_m * ux, ball[1] + c.push_through_m * uy), False
             return (ball[0] - back * ux, ball[1] - back * uy), avoid
         self.pushing = False

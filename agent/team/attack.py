@@ -30,24 +30,14 @@ def _distance_to_segment(point: tuple[float, float], start: tuple[float, float],
     return math.hypot(point[0] - start[0] - t * sx, point[1] - start[1] - t * sy)
 
 
-#: A new aim point replaces the previous one only when its path is this much clearer [m] (without it the aim
-#: flipped between the two sides of a goalkeeper standing in the middle every few cycles, and the dribbler
-#: turned back and forth beside the ball).
-KEEP_AIM_M = 0.3
-
-
-def goal_target(ball: tuple[float, float], opponents: list[tuple[float, float]],
-                previous: tuple[float, float] | None = None) -> tuple[float, float]:
+def goal_target(ball: tuple[float, float], opponents: list[tuple[float, float]]) -> tuple[float, float]:
     """The aim point behind the opponent goal line whose path from ``ball`` keeps farthest from the
-    ``opponents`` (team frame, metres); the centre when nobody is in the way; ``previous`` (an earlier
-    answer) while it stays nearly as clear."""
+    ``opponents`` (team frame, metres); the centre when nobody is in the way."""
     clearances = {y: min((_distance_to_segment(o, ball, (GOAL_LINE_X_M, y)) for o in opponents), default=math.inf)
                   for y in AIM_YS_M}
     best = max(AIM_YS_M, key=lambda y: clearances[y])
     if clearances[AIM_YS_M[0]] + 0.2 >= clearances[best]:
         best = AIM_YS_M[0]  # the centre unless a side is clearly (0.2 m) clearer
-    if previous is not None and previous[1] in clearances and clearances[previous[1]] + KEEP_AIM_M >= clearances[best]:
-        best = previous[1]
     return GOAL_LINE_X_M + BEYOND_LINE_M, best
 
 

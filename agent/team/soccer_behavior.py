@@ -74,7 +74,6 @@ class SoccerBehavior:
         self._world: WorldModel | None = None
         self._set_piece_aim: tuple[float, float] | None = None
         self._shot_after_s: float | None = None
-        self._goal_aim: tuple[float, float] | None = None
         self._key: Hashable = None
         self._target: tuple[float, float] | None = None
 
@@ -135,8 +134,7 @@ class SoccerBehavior:
         of the goal a dribble that has the ball at its feet, facing the goal, stops and shoots (the dribble
         brought the ball to 2 m before the empty goal and then swung round it for 30 s)."""
         world = self._world
-        target = goal_target(ball, seen_opponents(world), self._goal_aim) if world is not None else (15.5, 0.0)
-        self._goal_aim = target
+        target = goal_target(ball, seen_opponents(world)) if world is not None else (15.5, 0.0)
         skill = self.skills.skill
         if self._key == ("shoot",):
             if skill is not None and not skill.done:
