@@ -12,10 +12,8 @@ from __future__ import annotations
 import math
 
 from agent.team import roles
-from agent.team.soccer_behavior import FROZEN_MODES, SoccerBehavior, own_set_piece
+from agent.team.soccer_behavior import SoccerBehavior, own_set_piece
 from agent.formation import beam_spot
-from agent.skills.base import PlayMotion
-from agent.skills.walk import STAND
 from agent.skills.walk_ball import WalkToBall
 from agent.world_model import WorldModel
 
@@ -33,9 +31,7 @@ class BaselineBehavior(SoccerBehavior):
 
     def _decide(self, world: WorldModel) -> None:
         game = world.game
-        if game.play_mode in FROZEN_MODES or game.side is None:
-            self.role = "idle"
-            self._use(("idle",), lambda: PlayMotion(STAND) if STAND in self.motion.library else None)
+        if self._idle_while_frozen(world):
             return
         ball = roles.ball_belief(world)
         if world.unum == roles.GOALKEEPER_UNUM:

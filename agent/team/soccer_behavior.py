@@ -91,11 +91,7 @@ class SoccerBehavior:
     # --- decisions --------------------------------------------------------------------------------------
     def _decide(self, world: WorldModel) -> None:
         game = world.game
-        if game.play_mode in FROZEN_MODES or game.side is None:
-            # Crouch into the walk stance while waiting: the first walk then starts from its own stance
-            # instead of the upright beam pose.
-            self.role = "idle"
-            self._use(("idle",), lambda: PlayMotion(STAND) if STAND in self.motion.library else None)
+        if self._idle_while_frozen(world):
             return
         ball = roles.ball_belief(world)
         set_piece = own_set_piece(game.play_mode, game.side)
@@ -253,6 +249,15 @@ class SoccerBehavior:
             return True
         forward, left = pose.to_ego(*point)
         return abs(math.degrees(math.atan2(left, forward))) <= tolerance_deg
+
+    def _idle_while_frozen(self, world: WorldModel) -> bool:
+        """In a frozen play mode (or before the side is known) crouch into the walk stance and wait: the first
+        walk then starts from its own stance instead of the upright beam pose. True = nothing else to decide."""
+        if world.game.play_mode in FROZEN_MODES or world.game.side is None:
+            self.role = "idle"
+            self._use(("idle",), lambda: PlayMotion(STAND) if STAND in self.motion.library else None)
+            return True
+        return False
 
     def _use(self, key: Hashable, make: Callable[[], Skill | None]) -> None:
         """Switch to the skill ``make()`` unless the decision ``key`` is the one already running."""

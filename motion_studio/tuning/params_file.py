@@ -19,6 +19,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from motion_studio.tuning.errors import TuningError
+from motions.authoring.toml_text import toml_value as authored_toml_value
 
 #: The project's root (the git work tree the revision is read from).
 PROJECT_ROOT = Path(__file__).resolve().parents[2]
@@ -71,20 +72,15 @@ class Provenance:
 
 
 def toml_value(value: object) -> str:
-    """A TOML literal of a number, bool, string, list or inline table."""
-    if isinstance(value, bool):
-        return "true" if value else "false"
-    if isinstance(value, int):
-        return str(value)
-    if isinstance(value, float):
-        return repr(round(value, 6))
-    if isinstance(value, str):
-        return '"' + value.replace("\\", "\\\\").replace('"', '\\"') + '"'
-    if isinstance(value, Mapping):
-        return "{ " + ", ".join(f"{k} = {toml_value(v)}" for k, v in value.items()) + " }"
-    if isinstance(value, (list, tuple)):
-        return "[" + ", ".join(toml_value(v) for v in value) + "]"
-    raise TuningError(f"cannot write {value!r} as TOML")
+    """A TOML literal of a number, bool, string, list or inline table (``motions.authoring.toml_text``).
+
+    Raises:
+        TuningError: a value TOML cannot hold.
+    """
+    try:
+        return authored_toml_value(value)
+    except TypeError as error:
+        raise TuningError(str(error)) from None
 
 
 def section_text(name: str, values: Mapping[str, object], comments: Mapping[str, str] | None = None) -> str:

@@ -23,6 +23,7 @@ from pathlib import Path
 
 from motions.authoring.common import PARAMS_DIR, ArmPose
 from motions.authoring.gait import GaitParams
+from motions.authoring.toml_text import toml_value
 
 #: The shipped gait parameter file.
 GAIT_PARAMS_PATH = PARAMS_DIR / "gait.toml"
@@ -93,20 +94,6 @@ def provenance(path: Path, section: str) -> str:
     return str(data.get(section, {}).get("provenance", ""))
 
 
-def _toml_value(value: object) -> str:
-    if isinstance(value, bool):
-        return "true" if value else "false"
-    if isinstance(value, int):
-        return str(value)
-    if isinstance(value, float):
-        return repr(round(value, 6))
-    if isinstance(value, str):
-        return '"' + value.replace("\\", "\\\\").replace('"', '\\"') + '"'
-    if isinstance(value, ArmPose):
-        return "{ " + ", ".join(f"{f.name} = {_toml_value(getattr(value, f.name))}" for f in fields(value)) + " }"
-    raise TypeError(f"cannot write {value!r} as a gait parameter")
-
-
 def section_overrides(params: GaitParams, common: GaitParams) -> dict[str, object]:
     """The parameters where ``params`` differs from ``common`` (what a section must say)."""
     return {f.name: getattr(params, f.name) for f in fields(params)
@@ -119,13 +106,13 @@ def dumps_gait_params(common: GaitParams, sections: Mapping[str, GaitParams],
     lines = [f"# {line}".rstrip() for line in header.splitlines()]
     lines += ["", f"[{COMMON}]"]
     if provenances.get(COMMON):
-        lines.append(f"provenance = {_toml_value(provenances[COMMON])}")
-    lines += [f"{f.name} = {_toml_value(getattr(common, f.name))}" for f in fields(common)]
+        lines.append(f"provenance = {toml_value(provenances[COMMON])}")
+    lines += [f"{f.name} = {toml_value(getattr(common, f.name))}" for f in fields(common)]
     for name, params in sections.items():
         lines += ["", f"[{name}]"]
         if provenances.get(name):
-            lines.append(f"provenance = {_toml_value(provenances[name])}")
-        lines += [f"{key} = {_toml_value(value)}" for key, value in section_overrides(params, common).items()]
+            lines.append(f"provenance = {toml_value(provenances[name])}")
+        lines += [f"{key} = {toml_value(value)}" for key, value in section_overrides(params, common).items()]
     return "\n".join(lines) + "\n"
 
 
