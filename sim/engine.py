@@ -164,6 +164,10 @@ class SimEngine:
         self.errors: Counter[int] = Counter()
         self.cycle = 0
         self._next_id = 1
+        self.sense_text = True
+        """False: `step` makes no sense messages (it returns none) while the perceptor cycles still count;
+        for a host that reads the same values from `World.perceptor_rows` itself (nao3d_gym's fast path).
+        Physics and rules do not depend on it."""
         self._outbox: dict[int, bytes] = {}
         self._hears: dict[int, list[Hear]] = {}
         self._bank_positions: dict[tuple[int, int], dict[str, int]] = {}
@@ -223,6 +227,18 @@ class SimEngine:
                 self._error(link, f"invalid {action.name!r} at byte {action.offset}: {action.reason}")
             else:
                 link.pending.append(action)
+
+    def receive_joint_velocities(self, agent_id: int, names: tuple[str, ...], values: list[float]) -> None:
+        """What `receive` does with a usual message ``(EFF F)...(syn)`` whose text was already split into
+        ``names`` and the floats its numbers spell: the in-process env skips writing and re-reading the
+        text (the values must be those the text would give, e.g. ``float("%.4f" % v)``)."""
+        link = self.agents.get(agent_id)
+        if link is None:
+            self._error(None, f"message from unknown agent id {agent_id}")
+            return
+        if names:
+            link.pending.append(_JointCommands(names, values))
+        link.synced = True
 
     def ready(self) -> bool:
         """Sync mode: True when every agent with a robot has sent ``(syn)`` since the last step (or is in its
@@ -430,6 +446,10 @@ class SimEngine:
         links = [link for link in self.agents.values()
                  if link.key in world.by_key and self.cycle > link.created_cycle]
         if not links:
+            return {}
+        if not self.sense_text:
+            for link in links:
+                link.perceptor_cycles += 1
             return {}
         values, frp_masks = world.perceptor_rows()
         spelled = values.size >= SPELL_MIN_VALUES
