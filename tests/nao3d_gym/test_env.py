@@ -37,7 +37,8 @@ def test_gymnasiums_checker_passes(env_id: str) -> None:
 
 
 def test_observation_is_the_parsed_sense_message() -> None:
-    env = gymnasium.make("Nao3D-Stand-v0").unwrapped
+    # The text path (test_fast_path.py ties the default fast path to it bit for bit).
+    env = gymnasium.make("Nao3D-Stand-v0", text_sense=True).unwrapped
     obs, _ = env.reset(seed=3)
     obs, *_ = env.step(np.zeros(22, dtype=np.float32))
     sense = parse_sense(env.last_sense)
