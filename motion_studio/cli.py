@@ -50,6 +50,7 @@ COMMAND_MODULES = (
     "motion_studio.commands.bench_tuning",
     "motion_studio.commands.motion_files",
     "motion_studio.commands.keypose",
+    "motion_studio.commands.strike",
 )
 
 
