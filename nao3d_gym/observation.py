@@ -120,26 +120,33 @@ class PerceptorRowReader:
         return np.clip(values.astype(np.float32), self.low, self.high)
 
 
-#: Scaled values this close to a half hundredth [in hundredths, relative] are rounded through the text:
-#: far above the error of the product ``v * 100`` (half an ulp, 1.1e-16 relative).
+#: Scaled values this close to a half unit of the last decimal [relative] are rounded through the text: far
+#: above the error of the product ``v * 10**decimals`` (half an ulp, 1.1e-16 relative).
 _HALF_TOLERANCE = 1e-12
 _EXACT_INTEGERS = 2.0 ** 52
 
 
-def fixed2_floats(values: np.ndarray) -> np.ndarray:
-    """``float("%.2f" % v)`` for every v, vectorised: what a parser reads back from the sense message.
+def fixed_floats(values: np.ndarray, decimals: int) -> np.ndarray:
+    """``float("%.{decimals}f" % v)`` for every v, vectorised: what a parser reads back from the text.
 
-    ``rint(v * 100) / 100`` gives the same double whenever the rint picks the same integer d as the text's
-    exact round-half-even (d / 100 is then one correctly rounded division, as the parse of "d/100" is);
-    the picks can only differ when v * 100 is within its rounding error of a half, and those rare values
-    (and huge or non-finite ones) go through the text itself.
+    ``rint(v * 10**decimals) / 10**decimals`` gives the same double whenever the rint picks the same
+    integer d as the text's exact round-half-even (d / 10**decimals is then one correctly rounded division,
+    as the parse of the decimal is); the picks can only differ when the scaled value is within its rounding
+    error of a half, and those rare values (and huge or non-finite ones) go through the text itself.
     """
-    scaled = values * 100.0
-    out = np.rint(scaled) / 100.0
+    unit = float(10 ** decimals)
+    scaled = values * unit
+    out = np.rint(scaled) / unit
     magnitude = np.abs(scaled)
     doubtful = np.abs(np.abs(scaled - np.floor(scaled)) - 0.5) <= _HALF_TOLERANCE * np.maximum(magnitude, 1.0)
     doubtful |= ~(magnitude < _EXACT_INTEGERS)
     if doubtful.any():
+        spelling = f"%.{decimals}f"
         for i in np.flatnonzero(doubtful).tolist():
-            out[i] = float("%.2f" % values[i])
+            out[i] = float(spelling % values[i])
     return out
+
+
+def fixed2_floats(values: np.ndarray) -> np.ndarray:
+    """``float("%.2f" % v)`` for every v: the sense message's spelling read back (see `fixed_floats`)."""
+    return fixed_floats(values, 2)

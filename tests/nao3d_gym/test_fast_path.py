@@ -48,16 +48,18 @@ def test_fast_path_sends_no_sense_text() -> None:
     assert Nao3DEnv(vision=True).text_sense is True
 
 
-def test_fixed2_floats_is_the_text_round_trip() -> None:
-    """Random values at every scale, exact half hundredths, values a hair off a half, signs, zeros."""
-    from nao3d_gym.observation import fixed2_floats
+@pytest.mark.parametrize("decimals", [2, 4])
+def test_fixed_floats_is_the_text_round_trip(decimals: int) -> None:
+    """Random values at every scale, exact halves of the last decimal, values a hair off a half, signs, zeros
+    (2 decimals: the sense message; 4: the effector message)."""
+    from nao3d_gym.observation import fixed_floats
     rng = np.random.default_rng(0)
-    halves = (np.arange(-20000, 20000) + 0.5) / 100.0
+    halves = (np.arange(-20000, 20000) + 0.5) / 10.0 ** decimals
     values = np.concatenate([
         rng.normal(0.0, 1.0, 50_000), rng.normal(0.0, 300.0, 50_000), rng.uniform(-1e6, 1e6, 10_000),
         halves, np.nextafter(halves, np.inf), np.nextafter(halves, -np.inf),
-        [0.0, -0.0, -0.004, 0.005, -0.005, 0.015, 1.005, 2.675, 1e20, -1e20]])
-    expected = np.array([float("%.2f" % v) for v in values.tolist()])
-    got = fixed2_floats(values)
+        [0.0, -0.0, -0.004, 0.005, -0.005, 0.015, 1.005, 2.675, 0.00005, 6.13955, 1e20, -1e20]])
+    expected = np.array([float(f"%.{decimals}f" % v) for v in values.tolist()])
+    got = fixed_floats(values, decimals)
     np.testing.assert_array_equal(got, expected)
     assert np.array_equal(np.signbit(got), np.signbit(expected))
