@@ -20,7 +20,9 @@ def bench_tuning(
     out: Annotated[Path | None, typer.Option(help="run folders (default out/tuning/bench[_quick], made anew)")] = None,
 ) -> None:
     """Figures of the tuning room (not pass/fail): symbolic_vs_pinocchio_max_diff_m, curve_solver,
-    lean_curvature_error_deg_m, turn_prediction_error_deg, casadi/cmaes_rollouts_to_target, wall_s."""
+    lean_curvature_error_deg_m, turn_prediction_error_deg, casadi/cmaes_rollouts_to_target, wall_s; the keyframe
+    NLPs: strike_toe_speed_m_s, standup_keypose_margin_m (authored crouch vs IPOPT's), strike_refine_loss (the
+    IPOPT strike's seeded kick and its rollout refinement)."""
     from motion_studio.tuning.bench import run
 
     figures = run(quick, out, workers, progress=None if as_json else typer.echo)

@@ -21,8 +21,8 @@ from motion_studio.tuning.compare import compare
 from motion_studio.tuning.run_folder import RUNS_DIR, draw_plots
 
 #: Budgets [candidates per optimizer] and problem sizes.
-QUICK = {"turn_evaluations": 12, "lean_evaluations": 8, "symbolic_samples": 3}
-FULL = {"turn_evaluations": 40, "lean_evaluations": 40, "symbolic_samples": 10}
+QUICK = {"turn_evaluations": 12, "lean_evaluations": 8, "symbolic_samples": 3, "strike_generations": 1}
+FULL = {"turn_evaluations": 40, "lean_evaluations": 40, "symbolic_samples": 10, "strike_generations": 3}
 
 
 def run(quick: bool = False, out: Path | None = None, workers: int = 2,
@@ -47,6 +47,15 @@ def run(quick: bool = False, out: Path | None = None, workers: int = 2,
 
     strike = optimise_strike(0)
     figures["strike_toe_speed_m_s"] = round(strike.toe_speed_m_s, 3)  # kinematic bound at 6.14 rad/s
+    from motion_studio.standup_keypose import section_keyposes
+    from motion_studio.strike_refine import refine_strike
+
+    authored, widest = section_keyposes("standup_front")
+    figures["standup_keypose_margin_m"] = {"authored": round(authored.margin_m, 4), "ipopt": round(widest.margin_m, 4)}
+    say("strike keyframe refined by rollouts")
+    refined = refine_strike("kick", sizes["strike_generations"], run_dir=out / "strike_refine", strike=strike)
+    figures["strike_refine_loss"] = {"seeded": round(refined.start_loss, 4), "refined": round(refined.best_loss, 4),
+                                     "rollouts": refined.rollouts}
     dynamic = load_dynamic_params()
     backend = make_backend("processes", workers) if workers > 1 else make_backend()
     try:
