@@ -36,17 +36,16 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from agent.agent import Agent, AgentConfig
 from agent.motion import MotionController, MotionLibrary, load_dynamic_params
 from agent.protocol.effectors import Action, JointVelocity
-from agent.protocol.framing import read_frame, write_frame
 from agent.skills.base import PlayMotion
 from agent.skills.behavior import SkillBehavior
 from agent.world_model import WorldModel
 from motion_studio.kick_rollout import (STRIKE_SPEED_M_S, TRAP_FOOT_UP_M_S, TRAP_TORSO_UP_M_S, KickRun,
                                         Placement, ball_spot)
 from motion_studio.realserver.paths import checked_scripts_dir
-from motion_studio.realserver.process import AGENT_PORT, MonitorLink, RealServer, connect, reexec_in_netns
+from motion_studio.realserver.process import reexec_in_netns
+from motion_studio.realserver.session import STALL_S, RealSession
 from motion_studio.scenarios import Truth
 from agent.protocol.constants import BALL_RADIUS_M, CYCLE_S
 
@@ -66,7 +65,6 @@ ROLL_WITHOUT_CONTACT_S = 1.0
 #: the kick's first command (measured: 60 cycles at z = 0.4, then a fall).
 WAKE_HEAD_RAD_S = (0.05, -0.05)
 #: A stalled server: no sense message for this long [s].
-STALL_S = 10.0
 _TIME = re.compile(rb"\(time ([0-9.eE+-]+)\)")
 _GAME_TIME = re.compile(rb"\(t ([0-9.]+)\)")
 
@@ -131,23 +129,12 @@ def ensure_private_network(module: str, argv: Sequence[str], scripts: Path | Non
 
 
 # ---- one server -------------------------------------------------------------------------------------
-class _Session:
-    """A real server started in this namespace, its monitor link and our agent's connection."""
+class _Session(RealSession):
+    """The kick bench's session: trainer commands queued to land in a fixed cycle, the game time read from
+    each sense message."""
 
     def __init__(self, scripts: Path, workdir: Path, behavior: Callable[[WorldModel], list[Action]]) -> None:
-        workdir.mkdir(parents=True, exist_ok=True)
-        self.log_path = workdir / "server.log"
-        self.server = RealServer(scripts, self.log_path)
-        try:
-            time.sleep(1.0)
-            self.monitor = MonitorLink()
-            self.sock = connect(AGENT_PORT)
-            self.sock.settimeout(STALL_S)
-        except BaseException:
-            self.server.stop()
-            raise
-        self.agent = Agent(AgentConfig(TEAM, UNUM, 0, say=False), behavior)
-        write_frame(self.sock, self.agent.connect_message())
+        super().__init__(scripts, workdir, behavior, TEAM, UNUM)
         self.game_time_s = 0.0
         self._commands: list[str] = []
 
@@ -160,31 +147,21 @@ class _Session:
     def step(self, think: bool = True) -> None:
         """One cycle: read the sense message, send the queued trainer commands, answer the message
         (``think`` False: only ``(syn)``)."""
-        payload = read_frame(self.sock)
-        if payload is None:
-            raise RuntimeError("the real server closed the connection")
+        payload = self.read()
         start = payload.find(b"(GS ")
         found = _GAME_TIME.search(payload, start) if start >= 0 else None
         if found:
             self.game_time_s = float(found.group(1))
         reply = self.agent.step(payload) if think else b"(syn)"
         for text in self._commands:
-            self.monitor.send(text)
+            self.send(text)
         self._commands = []
-        write_frame(self.sock, reply)
+        self.answer(reply)
 
     def collisions(self) -> int:
-        return self.log_path.read_text(errors="replace").count("ANALYSECOLLISIONS")
-
-    def close(self) -> None:
-        try:
-            self.sock.close()
-        finally:
-            self.monitor.close()
-            self.server.stop()
+        return self.collisions_since(0)
 
 
-# ---- truth from monitor frames ------------------------------------------------------------------------
 def frame_time_s(frame: bytes) -> float | None:
     """Game time of a monitor frame (None if it carries none)."""
     found = _TIME.search(frame[:4000])

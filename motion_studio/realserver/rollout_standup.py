@@ -39,6 +39,7 @@ from agent.skills.base import PlayMotion
 from agent.skills.behavior import SkillBehavior
 from agent.skills.standup import StandUp, at_rest, feet_force_n, upright_on_feet
 from agent.world_model import WorldModel
+from motion_studio.realserver.session import RealSession
 from motions.model import Motion
 from agent.protocol.constants import CYCLE_S
 
@@ -128,49 +129,15 @@ class TruthSample:
     """Torso orientation, row-major 3x3 (columns: torso x right, y forward, z up in the field frame)."""
 
 
-class RealWorld:
+class RealWorld(RealSession):
     """A real server in this network namespace, its monitor connection and our agent's connection."""
 
     def __init__(self, workdir: Path, behavior: Callable[[WorldModel], list[Action]],
                  scripts: Path | None = None, robot_type: int = 0) -> None:
-        from agent.protocol.framing import write_frame
         from motion_studio.realserver.paths import checked_scripts_dir
-        from motion_studio.realserver.process import MonitorLink, RealServer, connect
 
-        self.workdir = workdir
-        workdir.mkdir(parents=True, exist_ok=True)
-        self.server = RealServer(checked_scripts_dir(scripts), workdir / "server.log")
-        try:
-            time.sleep(1.0)
-            self.monitor = MonitorLink()
-            self.sock = connect(3100)
-        except OSError:
-            self.server.stop()
-            raise
-        self.sock.settimeout(10.0)
-        self.agent = Agent(AgentConfig(TEAM, UNUM, robot_type, say=False), behavior)
-        write_frame(self.sock, self.agent.connect_message())
+        super().__init__(checked_scripts_dir(scripts), workdir, behavior, TEAM, UNUM, robot_type)
         self._log_from = 0
-
-    def step(self) -> None:
-        from agent.protocol.framing import read_frame, write_frame
-
-        payload = read_frame(self.sock)
-        if payload is None:
-            raise RuntimeError("the real server closed the connection")
-        write_frame(self.sock, self.agent.step(payload))
-
-    def send(self, command: str) -> None:
-        self.monitor.send(command)
-
-    def _log_size(self) -> int:
-        return (self.workdir / "server.log").stat().st_size
-
-    def _collisions_since(self, offset: int) -> int:
-        # the real server freezes self-colliding joints and prints each pair per cycle (REFERENCE §4.5)
-        with open(self.workdir / "server.log", "rb") as log:
-            log.seek(offset)
-            return log.read().count(b"ANALYSECOLLISIONS")
 
     def mark(self) -> None:
         """Start keeping truth: the frames so far are dropped (memory), a full state is requested (diffs only
@@ -178,7 +145,7 @@ class RealWorld:
         if not self.monitor.thread.is_alive():
             raise RuntimeError("the monitor connection closed")
         self.monitor.frames.clear()
-        self._log_from = self._log_size()
+        self._log_from = self.log_size()
         self.monitor.send("(reqfullstate)")
 
     def truths(self) -> tuple[dict[int, TruthSample], int]:
@@ -207,14 +174,7 @@ class RealWorld:
                 out[round(frame.time_s / CYCLE_S)] = _sample(frame.time_s, robot.bodies)
         if not out:
             raise RuntimeError("the monitor showed no robot")
-        return out, self._collisions_since(self._log_from)
-
-    def close(self) -> None:
-        try:
-            self.sock.close()
-        finally:
-            self.monitor.close()
-            self.server.stop()
+        return out, self.collisions_since(self._log_from)
 
 
 def _sample(time_s: float, bodies: dict) -> TruthSample:

@@ -14,6 +14,7 @@ import pytest
 from motion_studio import tune_kick
 from motion_studio.kick_rollout import KickRun, Placement
 from motion_studio.realserver import rollout_kick
+from motion_studio.realserver import session as real_session
 from motion_studio.realserver.rollout_kick import CYCLE_S, frame_time_s, launch, measure, parse_truth
 from motions.authoring.kick import kick_params, stance_params
 
@@ -100,8 +101,8 @@ def test_trainer_commands_go_out_before_the_agent_answers(monkeypatch):
     session.sock = None
     session.agent = type("A", (), {"step": lambda self, payload: b"(lle1 0.5)(syn)"})()
     sense = b"(time (now 3.1))(GS (sl 0)(sr 0)(t 1.24)(pm PlayOn))"
-    monkeypatch.setattr(rollout_kick, "read_frame", lambda sock: sense)
-    monkeypatch.setattr(rollout_kick, "write_frame", lambda sock, payload: log.append(("agent", payload)))
+    monkeypatch.setattr(real_session, "read_frame", lambda sock: sense)
+    monkeypatch.setattr(real_session, "write_frame", lambda sock, payload: log.append(("agent", payload)))
     session.command("(playMode PlayOn)")
     session.step()
     session.step(think=False)
