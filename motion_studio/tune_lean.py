@@ -28,7 +28,7 @@ from motion_studio.lean_problem import (COMMANDS, QUICK_COMMANDS, QUICK_WALK_S, 
 from motion_studio.tuning import make_backend
 from motion_studio.tuning.params_file import Provenance, section_text, write_sections
 from motion_studio.tuning.run_folder import default_run_dir
-from motion_studio.tuning.session import OPTIMIZERS, one_line_errors, run_optimizer
+from motion_studio.tuning.session import OPTIMIZERS, add_curve_run_options, one_line_errors, run_optimizer
 from motion_studio.walk_rollout import run_walk
 
 #: Curvature beyond this earns nothing more in the scan's score [deg/m].
@@ -110,11 +110,7 @@ def main(argv: list[str] | None = None) -> int:
                              f"{WALK_S:g} s)")
     parser.add_argument("--target-deg-m", type=float, default=TARGET_DEG_M,
                         help="curvature wanted at a full lean [deg/m] (linear in the request)")
-    parser.add_argument("--compare", action="store_true",
-                        help="run both optimizers on one budget and print rollouts to CMA-ES's final objective")
-    parser.add_argument("--run-dir", type=Path, default=None, help="run folder (default out/tuning/walk_lean_<optimizer>)")
-    parser.add_argument("--workers", type=int, default=1, help="local processes for the rollouts")
-    parser.add_argument("--ray-address", default=None, help="run the rollouts on this Ray cluster ('local': a new one)")
+    add_curve_run_options(parser, "walk_lean")
     parser.add_argument("--seed", type=int, default=0, help="seed of CMA-ES")
     parser.add_argument("--scan", default=None,
                         help='evaluate these offset sets instead (the first method), e.g. "le1=-2;le1=-3,le3=1"')

@@ -35,7 +35,7 @@ from motion_studio.skill_bench.turn import gain_sweep
 from motion_studio.tuning import make_backend
 from motion_studio.tuning.params_file import Provenance, replace_sections, toml_value, write_sections
 from motion_studio.tuning.run_folder import default_run_dir
-from motion_studio.tuning.session import OPTIMIZERS, one_line_errors, run_optimizer
+from motion_studio.tuning.session import OPTIMIZERS, add_curve_run_options, one_line_errors, run_optimizer
 from motion_studio.turn_problem import (CHECK_DEG, CHECK_QUICK_DEG, QUICK_POINTS_DEG, REQUEST_POINTS_DEG,
                                         prediction_error, turn_curve, turn_problem)
 
@@ -133,13 +133,9 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--evaluations", type=int, default=40, help="candidates at most (casadi, cmaes)")
     parser.add_argument("--quick", action="store_true",
                         help=f"points {QUICK_POINTS_DEG} on the left side only, check {CHECK_QUICK_DEG} deg")
-    parser.add_argument("--compare", action="store_true",
-                        help="run both optimizers on one budget and print rollouts to CMA-ES's final objective")
     parser.add_argument("--from-seed-curve", action="store_true",
                         help="start from the seed agent's curve (REFERENCE 7.3) instead of the shipped one")
-    parser.add_argument("--run-dir", type=Path, default=None, help="run folder (default out/tuning/turn_gain_<optimizer>)")
-    parser.add_argument("--workers", type=int, default=1, help="local processes for the rollouts")
-    parser.add_argument("--ray-address", default=None, help="run the rollouts on this Ray cluster ('local': a new one)")
+    add_curve_run_options(parser, "turn_gain")
     parser.add_argument("--min-gain", type=float, default=MIN_GAIN, help="smallest gain of the curve (fit)")
     parser.add_argument("--motions", type=int, default=MOTIONS, help="motions per gain and side (fit)")
     parser.add_argument("--seed", type=int, default=0, help="seed of the simulator (and of CMA-ES)")

@@ -53,15 +53,7 @@ def plot_objective(records: Sequence[dict[str, Any]], path: Path, title: str = "
     finite = [y for y in losses[1] if y is not None]
     if finite and min(finite) > 0 and max(finite) / max(min(finite), 1e-300) > 100:
         axis.set_yscale("log")
-    axis.set_xlabel("rollouts")
-    axis.set_ylabel("loss (lower is better)")
-    axis.set_title(title or "objective per iteration")
-    axis.grid(alpha=0.3)
-    axis.legend(fontsize=8)
-    figure.tight_layout()
-    figure.savefig(path, dpi=100)
-    plt.close(figure)
-    return path
+    return _finish(figure, axis, "rollouts", "loss (lower is better)", title or "objective per iteration", path)
 
 
 def plot_curve(records: Sequence[dict[str, Any]], view: CurveView, best_values: dict[str, float], path: Path,
@@ -84,9 +76,14 @@ def plot_curve(records: Sequence[dict[str, Any]], view: CurveView, best_values: 
     if view.target is not None:
         axis.plot(xs, view.target(xs), "k--", lw=1, zorder=2, label="target")
     axis.scatter([], [], s=7, color="0.6", label="rollouts (lighter = earlier)")
-    axis.set_xlabel(view.xlabel)
-    axis.set_ylabel(view.ylabel)
-    axis.set_title(title or "tuned curve and the rollouts that shaped it")
+    return _finish(figure, axis, view.xlabel, view.ylabel, title or "tuned curve and the rollouts that shaped it", path)
+
+
+def _finish(figure: Any, axis: Any, xlabel: str, ylabel: str, title: str, path: Path) -> Path:
+    """Labels, grid and legend as every tuning plot has them; writes ``path`` (PNG) and frees the figure."""
+    axis.set_xlabel(xlabel)
+    axis.set_ylabel(ylabel)
+    axis.set_title(title)
     axis.grid(alpha=0.3)
     axis.legend(fontsize=8)
     figure.tight_layout()

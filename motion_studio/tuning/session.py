@@ -8,6 +8,7 @@ bar the same way for all.
 
 from __future__ import annotations
 
+import argparse
 import functools
 import sys
 from collections.abc import Callable
@@ -96,6 +97,17 @@ def run_optimizer(problem: Problem, optimizer: str, run_dir: Path, max_evaluatio
         if progress:
             progress(text)
     return result
+
+
+def add_curve_run_options(parser: argparse.ArgumentParser, run_name: str) -> None:
+    """The options the curve tuners (lean, turn) share: a comparison of the optimizers, the run folder, and
+    where the rollouts run."""
+    parser.add_argument("--compare", action="store_true",
+                        help="run both optimizers on one budget and print rollouts to CMA-ES's final objective")
+    parser.add_argument("--run-dir", type=Path, default=None,
+                        help=f"run folder (default out/tuning/{run_name}_<optimizer>)")
+    parser.add_argument("--workers", type=int, default=1, help="local processes for the rollouts")
+    parser.add_argument("--ray-address", default=None, help="run the rollouts on this Ray cluster ('local': a new one)")
 
 
 def one_line_errors(program: str) -> Callable[[Callable[..., int]], Callable[..., int]]:

@@ -44,6 +44,7 @@ from motions.authoring.common import (ARMS, FILES_DIR, LEGS, PARAMS_DIR, Keyfram
                                       write_xml_motions)
 from motions.authoring.gait import STANCE_FLAG, GaitParams, stance_pose
 from motions.authoring.gait_params import GAIT_PARAMS_PATH, load_gait_params
+from motions.authoring.toml_text import toml_value
 from motions.model import XML, Keyframe, Motion
 
 PARAMS_PATH = PARAMS_DIR / "standup.toml"
@@ -330,13 +331,10 @@ def load_standup_params(path: Path = PARAMS_PATH) -> dict[str, StandUpParams]:
 
 
 def _toml_number(value: object) -> str:
-    if isinstance(value, bool):
-        return "true" if value else "false"
-    if isinstance(value, int):
-        return str(value)
+    """A TOML literal (``toml_text.toml_value``) with floats at 4 decimals, as the stand-up file keeps them."""
     if isinstance(value, float):
-        return repr(round(value, 4))
-    return '"' + str(value).replace("\\", "\\\\").replace('"', '\\"') + '"'
+        return toml_value(round(value, 4))
+    return toml_value(value if isinstance(value, (bool, int, str)) else str(value))
 
 
 def dumps_section(name: str, params: StandUpParams, meta: Mapping[str, str] | None = None) -> str:
