@@ -123,6 +123,16 @@ class PhysicsParams:
     ball_solimp: tuple[float, float, float, float, float] = (0.9, 0.95, 0.001, 0.5, 2.0)
     """solimp of the ball's contacts: stiff (MuJoCo's default), so the light ball neither sinks into the
     ground nor rolls out early; it wins the parameter mix of every ball contact."""
+    ball_priority: int = 0
+    """MuJoCo geom priority of the ball: 0 = its friction mixes with the other geom's (MuJoCo takes the larger);
+    1 = the ball's friction, condim, solref and solimp decide each of its contacts alone."""
+    ball_ground_friction: float | None = None
+    """Coulomb friction of the ball on the field plane alone (an explicit MuJoCo contact pair, so the ball's
+    foot contacts keep ``ball_friction``); None = no pair, the field plane mixes like any other geom."""
+    ball_ground_solref: tuple[float, float] | None = None
+    """solref of the ball-field pair (None: ``ball_solref``)."""
+    ball_ground_solimp: tuple[float, float, float, float, float] | None = None
+    """solimp of the ball-field pair (None: ``ball_solimp``)."""
     ball_restitution: float = 0.8
     """Ball bounce (REFERENCE §2.4)."""
     ball_min_bounce_speed_m_s: float = 0.8

@@ -169,7 +169,19 @@ class World:
         ball.add_geom(name="ball", type=mujoco.mjtGeom.mjGEOM_SPHERE, size=[BALL_RADIUS_M, 0, 0],
                       mass=BALL_MASS_KG, contype=_BALL_BIT, conaffinity=_ALL_BITS, condim=p.contact_condim,
                       friction=[p.ball_friction, 0.005, 0.0001], rgba=[1.0, 0.5, 0.0, 1.0], solref=list(p.ball_solref),
-                      solimp=list(p.ball_solimp), solmix=1e6)   # the ball's own parameters win every contact
+                      solimp=list(p.ball_solimp), solmix=1e6,    # the ball's own parameters win every contact
+                      priority=p.ball_priority)
+        if p.ball_ground_friction is not None:
+            # An explicit pair replaces the dynamic ball-field contact (MuJoCo checks each pair once), so the ball's
+            # roll on the field has its own friction and impedance; its foot contacts keep the ball's.
+            pair = spec.add_pair(geomname1="field", geomname2="ball")
+            mu = p.ball_ground_friction
+            pair.condim = p.contact_condim
+            pair.friction = [mu, mu, 0.005, 0.0001, 0.0001]
+            pair.solref = list(p.ball_ground_solref if p.ball_ground_solref is not None else p.ball_solref)
+            pair.solimp = list(p.ball_ground_solimp if p.ball_ground_solimp is not None else p.ball_solimp)
+            if p.surface_layer_m > 0.0:
+                pair.margin, pair.gap = -p.surface_layer_m, 0.0
         return spec
 
     def add_robot(self, key: int, robot_type: int = 0,
