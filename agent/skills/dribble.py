@@ -22,7 +22,7 @@ from dataclasses import dataclass
 from agent.motion import MotionController, MotionRequest
 from agent.skills.avoid import Avoider
 from agent.skills.base import Skill
-from agent.skills.walk import FORWARD, LEFT, RIGHT, WalkConfig, _Steer, report_walk_odometry
+from agent.skills.walk import BACKWARD, FORWARD, LEFT, RIGHT, WALKS, WalkConfig, _Steer, report_walk_odometry
 from agent.world.frames import wrap_angle_rad
 from agent.world_model import WorldModel
 
@@ -74,6 +74,21 @@ class DribbleConfig:
     """... and is still walked toward (looking for the ball) up to this age [s]; then the robot searches."""
     search_turn_s: float = 4.2
     """Searching, the robot turns by a turn motion every this long [s] (the head sweeps one full period)."""
+    near_ball_m: float = 0.8
+    """Within this of the ball, facing the target direction within ``near_heading_deg``, the robot lines up
+    with single short walks (sideways, backward) instead of going round the ball with turns [m]..."""
+    near_heading_deg: float = 45.0
+    """... [deg]; beyond it (and farther than ``turn_clear_m`` from the ball) it turns toward the target
+    direction in place."""
+    turn_clear_m: float = 0.3
+    """A turn in place only with the ball at least this far (torso centre) [m]: nearer, the feet swing into it."""
+    ahead_min_m: float = 0.1
+    """The ball counts as in front of the feet this far ahead of the torso centre [m]."""
+    side_step_m: float = 0.14
+    """The ball this far or more to the side (ahead of the feet): one side walk toward it [m] (a side walk
+    moves at least 0.27 m, so a smaller error would swing to the other side)."""
+    clear_lateral_m: float = 0.15
+    """The ball beside or behind the feet within this to the side: one side walk away from it first [m]."""
 
 
 class Dribble(Skill):
@@ -104,6 +119,8 @@ class Dribble(Skill):
         self.pushing = False
         """The robot walks through the ball this cycle (for logs and tests)."""
         self._search_cycles = 0
+        self._short: str | None = None
+        self._short_started = False
 
     def step(self, world: WorldModel, motion: MotionController) -> MotionRequest:
         return self._steer.guard(motion, self._step(world, motion))
@@ -130,6 +147,12 @@ class Dribble(Skill):
         under_way = self._steer.turn_step(motion)
         if under_way is not None:
             return MotionRequest(under_way.motion, under_way.lean, under_way.turn_deg, under_way.gain, head)
+        near = self._near_ball(motion, pose.heading_rad, (bx, by), ball_ego, head)
+        if near is not None:
+            return near
+        if self.pushing:
+            point, avoid = self._push_point((bx, by)), False
+            ego = pose.to_ego(*point)
         blocker = self._opponent_ahead(world)
         if blocker is not None:
             # An opponent right in front: step sideways away from it (a side walk stays under the charging
@@ -149,6 +172,58 @@ class Dribble(Skill):
         if request.motion == FORWARD or request.motion is None:
             return MotionRequest(request.motion, request.lean, request.turn_deg, request.gain, head)
         return MotionRequest(request.motion, request.lean, request.turn_deg, request.gain, head)
+
+    def _near_ball(self, motion: MotionController, heading_rad: float, ball: tuple[float, float],
+                   ball_ego: tuple[float, float], head: tuple[float, float]) -> MotionRequest | None:
+        """Near the ball and roughly facing the target direction: one short walk that brings the ball in
+        front of the feet (measured on our simulator: going round the ball with turns after the ball slipped
+        aside took 10-20 s; a side or backward walk takes about 2 s). None = walk on as usual (pushing, or
+        the approach from afar)."""
+        c = self.config
+        if self._short is not None:
+            # One short walk of its smallest length: asked for until it plays, then stopped at once.
+            if not self._short_started:
+                if motion.motion_name == self._short:
+                    self._short_started = True
+                else:
+                    return MotionRequest(self._short, head_deg=head)
+            if motion.motion_name in WALKS and not motion.idle:
+                return MotionRequest(None, head_deg=head)
+            self._short = None
+        if self.pushing:
+            return None
+        forward, left = ball_ego
+        distance = math.hypot(forward, left)
+        if distance > c.near_ball_m:
+            return None
+        to_target = math.atan2(self.target[1] - ball[1], self.target[0] - ball[0])
+        error_deg = math.degrees(wrap_angle_rad(to_target - heading_rad))
+        walking_forward = motion.motion_name == FORWARD and not motion.stopping
+        if abs(error_deg) > c.near_heading_deg:
+            if distance >= c.turn_clear_m and self._steer.can_turn(motion):
+                return self._steer.turn(motion, error_deg)
+            name = BACKWARD if forward > 0.0 else (RIGHT if left > 0.0 else LEFT)
+        elif forward >= c.ahead_min_m:
+            if abs(left) < c.side_step_m:
+                self.pushing = True  # in front of the feet: walk at the point beyond the ball
+                return None
+            name = LEFT if left > 0.0 else RIGHT
+        elif abs(left) < c.clear_lateral_m:
+            name = RIGHT if left > 0.0 else LEFT
+        else:
+            name = BACKWARD
+        if walking_forward or name not in motion.library:
+            return None if not walking_forward else MotionRequest(None, head_deg=head)
+        if not motion.idle and motion.motion_name in WALKS:
+            return MotionRequest(None, head_deg=head)  # let the walk under way stop first
+        self._short, self._short_started = name, False
+        return MotionRequest(name, head_deg=head)
+
+    def _push_point(self, ball: tuple[float, float]) -> tuple[float, float]:
+        """The point ``push_through_m`` beyond the ball on the line ball -> target [m]."""
+        to_target = math.atan2(self.target[1] - ball[1], self.target[0] - ball[0])
+        through = self.config.push_through_m
+        return ball[0] + through * math.cos(to_target), ball[1] + through * math.sin(to_target)
 
     def _opponent_ahead(self, world: WorldModel) -> tuple[float, float] | None:
         """The nearest opponent seen lately inside the box in front of the robot (ego forward, left) [m]."""

@@ -43,6 +43,9 @@ class BallApproach:
     """Lateral errors below this are turned out, not side-stepped [m]: a side walk, however short the
     request, plays its start and stop ramps and moves about 0.25 m (measured), so smaller corrections
     overshot and swung from side to side."""
+    search_turn_s: float = 4.2
+    """Searching, the robot turns a quarter by a turn motion after each full head sweep [s] (2 periods of
+    the sweep): a ball behind the robot is out of the head's reach, and a lone robot stood for ever."""
 
 
 class WalkToBall(Skill):
@@ -96,6 +99,11 @@ class WalkToBall(Skill):
         ball = self.ball_ego(world)
         if ball is None:
             self._search_cycles += 1
+            under_way = steer.turn_step(motion)
+            if under_way is not None:
+                return under_way
+            if self._search_cycles % round(self.approach.search_turn_s / CYCLE_S) == 0 and steer.can_turn(motion):
+                return steer.turn(motion, 90.0)
             phase = self._search_cycles * CYCLE_S * 1.5
             sweep = 60.0 * math.sin(phase)
             # Every other sweep looks down at the feet too (a ball right in front is below a -20° view).
