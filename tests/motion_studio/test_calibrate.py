@@ -116,20 +116,25 @@ def test_ball_roll_is_compared_with_the_real_figure() -> None:
 
     faithful = ball_roll_measures(default_physics_params())
     assert [m.name for m in faithful] == ["roll_at_2_m_s", "roll_at_4_m_s", "roll_at_6_m_s", "roll_at_8_m_s"]
-    assert all(abs(m.ours - 0.677) < 0.06 for m in faithful)      # measured 0.68-0.71 m per m/s
+    # within the 3 % at every speed: measured 0.6847 m per m/s at 2-8 m/s (+1.1 %; 0.685-0.709 before the
+    # ball-field contact pair)
+    assert all(m.error < 1.0 for m in faithful)
     draggy = ball_roll_measures(default_physics_params(ball_linear_drag_n_s_m=0.05))
     assert all(m.ours < 0.5 and m.error == 5.0 for m in draggy)   # five times the drag: rolls far shorter
 
 
-def test_the_ode_friction_candidate_jams_the_real_kick_as_the_real_server_does() -> None:
-    # The real kick's commands: the real ball went 1.45 m, popping up to 8 cm (it jams between foot and ground).
+def test_the_real_kick_moves_our_ball_as_far_and_the_ode_friction_candidate_does_not() -> None:
+    # The real kick of the shipped motions (recorded at 66e41c9): the real ball went 4.09 m. With the ball contacts
+    # fitted on it (sim.physics_params: ball priority, mu 0.5 on robots, mu 10 on the field) the replayed commands
+    # move ours 4.01 m (the earlier defaults: 2.43 m, the ball jammed between foot and ground). The ode_friction
+    # candidate reproduced the older kick's jam (real 1.45 m, an older motion) but jams this one too: 1.67 m.
     from sim.physics_params import load_physics_file
 
+    kick = load_trace(FIXTURES / "real_0.7.3_skill_kick.jsonl.gz")
+    travel = {m.name: m for m in measures(replay_trace(kick))}["ball_travel_m"]
+    assert 3.5 < travel.real < 4.5
+    assert abs(travel.ours - travel.real) < 0.1 * travel.real          # measured 4.008 m against 4.086
     candidate = Path(__file__).parents[2] / "sim" / "physics_candidates" / "ode_friction.toml"
     params = default_physics_params(**load_physics_file(candidate))
-    kick = load_trace(FIXTURES / "real_0.7.3_skill_kick.jsonl.gz")
-    travel = {m.name: m for m in measures(replay_trace(kick, params))}["ball_travel_m"]
-    assert 1.0 < travel.real < 2.0
-    assert abs(travel.ours - travel.real) < 0.4 * travel.real         # measured 1.94 m (default world: 4.7 m)
-    default = {m.name: m for m in measures(replay_trace(kick))}["ball_travel_m"]
-    assert default.ours > 2 * travel.real                              # why the default is not faithful here
+    jammed = {m.name: m for m in measures(replay_trace(kick, params))}["ball_travel_m"]
+    assert jammed.ours < 0.5 * travel.real                             # measured 1.67 m

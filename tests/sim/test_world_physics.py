@@ -227,7 +227,9 @@ def test_midphase_off_changes_no_state() -> None:
     for midphase in (False, True):
         world = standing(2)
         world.place_robot(1, -9.5, -3.0, 180.0, z_m=0.385)
-        world.set_ball((-9.0, -2.0, 0.3), (-2.0, -2.0, 0.0))
+        # (the ball's launch re-chosen for the fitted ball contacts of 2026-11-26: the old one, (-9.0, -2.0) at
+        # (-2, -2) m/s, now glances off after 2 cycles of contact; this one stays in contact 13 cycles)
+        world.set_ball((-9.6, -2.2, 0.3), (0.0, -2.0, 0.0))
         if midphase:
             world.model.opt.disableflags &= ~int(mujoco.mjtDisableBit.mjDSBL_MIDPHASE)
         touching = 0
