@@ -13,7 +13,7 @@ from dataclasses import dataclass
 
 from agent.communication import messages, slots
 from agent.errors import ConfigError
-from agent.formation import DEFAULT_FORMATION, beam_spot
+from agent.formation import DEFAULT_FORMATION, BeamSpot, beam_spot, kick_off_spot
 from agent.localization import DEFAULT_LOCALIZER, LOCALIZERS
 from agent.protocol.effectors import Action, Beam, Init, Say, Scene, Syn, format_actions
 from agent.protocol.sense import parse_sense
@@ -114,6 +114,10 @@ class Agent:
         if not game.beam_allowed or game.unum is None or game.side is None:
             return []
         spot = beam_spot(game.unum, self.config.formation)
+        if game.play_mode.lower() == f"goal_{game.side}":
+            # We scored: the opponents kick off next, so no spot inside the centre circle or on its line.
+            x, y = kick_off_spot(spot.x_m, spot.y_m, game.unum, opponents_kick_off=True)
+            spot = BeamSpot(x, y, spot.rot_deg)
         # One beam per beam-allowed play-mode period (keyed by when it began), or when the target changes.
         key = (game.play_mode_since_s, spot.x_m, spot.y_m, spot.rot_deg)
         if key == self._beamed_for:

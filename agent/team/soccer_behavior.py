@@ -18,6 +18,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Hashable
 
+from agent.formation import kick_off_spot
 from agent.motion import MotionController
 from agent.protocol.effectors import Action
 from agent.skills.base import PlayMotion, Skill
@@ -55,14 +56,6 @@ SHOT_COOLDOWN_S = 3.0
 SET_PIECE_AIM_DEG = 12.0
 #: Distance the players keep from the ball at the opponents' set pieces [m] (the referee clears 2 m).
 SET_PIECE_CLEARANCE_M = 2.2
-#: At a kick-off the players not taking it stand this far inside the own half [m] ...
-KICK_OFF_HALF_MARGIN_M = 0.4
-#: ... and, at the opponents' kick-off, this far from the centre spot (the circle's radius is 2 m) [m].
-KICK_OFF_CIRCLE_CLEARANCE_M = 2.5
-#: ... and this far beside the line through the centre spot along the field [m]: a player waiting on it (the
-#: circle pushed a spot at x = -0.4 straight back to (-2.5, 0)) stood in the path of the kick-off, whose taker
-#: then lined up a 35 deg kick for 11 s (ours against ours).
-KICK_OFF_LINE_CLEARANCE_M = 1.2
 
 
 class SoccerBehavior:
@@ -133,7 +126,7 @@ class SoccerBehavior:
         if set_piece is False:
             spot = _keep_clear(spot, ball, SET_PIECE_CLEARANCE_M)
         if game.play_mode.startswith("KickOff_"):
-            spot = _kick_off_spot(spot, opponents=set_piece is False, unum=world.unum)
+            spot = kick_off_spot(*spot, world.unum, opponents_kick_off=set_piece is False)
         self._stand_at(world, spot, ball)
 
     def _play_ball(self, ball: tuple[float, float]) -> None:
@@ -275,21 +268,6 @@ class SoccerBehavior:
             return
         self._key = key
         self.skills.set_skill(make())
-
-
-def _kick_off_spot(spot: tuple[float, float], opponents: bool, unum: int) -> tuple[float, float]:
-    """``spot`` moved where the kick-off rules let a player stand: in the own half (``KICK_OFF_HALF_MARGIN_M``
-    inside it) and, at the opponents' kick-off, also outside the centre circle. The referee moves a player
-    standing elsewhere, and a robot set down mid-stride falls (measured on our simulator: 3 falls in each of
-    4 matches of 120 s, all at the opponents' kick-off after our goal, of players walking to support spots in
-    the opponent half). ``unum`` picks the side of the kick-off line at the opponents' kick-off."""
-    x, y = min(spot[0], -KICK_OFF_HALF_MARGIN_M), spot[1]
-    if opponents:
-        # The side of the line by unum: the spot's own side flipped with the ball's noise (the second
-        # attacker's spot takes its side from the on-ball player's), and the player turned back and forth.
-        y = (1.0 if unum % 2 == 0 else -1.0) * max(abs(y), KICK_OFF_LINE_CLEARANCE_M)
-        x, y = _keep_clear((x, y), (0.0, 0.0), KICK_OFF_CIRCLE_CLEARANCE_M)
-    return x, y
 
 
 def _keep_clear(spot: tuple[float, float], ball: tuple[float, float], clearance_m: float) -> tuple[float, float]:

@@ -58,6 +58,44 @@ def test_beam_again_after_a_goal_never_in_play_on():
     assert [mode for mode, _ in beams] == ["BeforeKickOff", "Goal_Left"]
 
 
+@pytest.mark.parametrize(("goal", "inside_allowed"), [("Goal_Left", False), ("Goal_Right", True)])
+def test_after_a_goal_the_kick_off_spots_beam_outside_the_circle_when_the_opponents_kick_off(goal, inside_allowed):
+    """Unum 2's kick-off spot (-0.5, 0) lies in the centre circle: after our goal (the opponents kick off) the
+    agent beams outside it (2.5 m from the centre, off the kick-off line); after theirs, to the spot itself."""
+    agent = Agent(AgentConfig("Mine", 2))
+    modes = ["BeforeKickOff"] * 3 + ["PlayOn"] * 3 + [goal] * 3
+    beams = []
+    for i, mode in enumerate(modes):
+        actions = parse_actions(agent.step(_sense(1.0 + 0.02 * i, mode, 2 if i == 1 else None,
+                                                  "left" if i == 1 else None)))
+        beams += [a for a in actions if isinstance(a, Beam)]
+    spot = beam_spot(2)
+    assert beams[0] == Beam(spot.x_m, spot.y_m, spot.rot_deg)
+    after = beams[1]
+    if inside_allowed:
+        assert after == beams[0]
+    else:
+        assert math.hypot(after.x_m, after.y_m) == pytest.approx(2.5, abs=0.01)  # beam text: 2 decimals
+        assert after.x_m < 0.0 and abs(after.y_m) >= 1.2
+
+
+@pytest.mark.parametrize("unum", range(2, 12))
+def test_kick_off_spots_obey_the_rules(unum):
+    """Every spot near the centre becomes legal: own half, and at the opponents' kick-off outside the circle and
+    beside the kick-off line; spots far from the centre keep their place."""
+    from agent.formation import kick_off_spot
+
+    for x, y in [(-0.5, 0.0), (1.0, 0.3), (-1.2, 1.0), (-2.6, -2.0), (-8.0, 3.0), (3.0, -4.0)]:
+        ours = kick_off_spot(x, y, unum, opponents_kick_off=False)
+        assert ours == (min(x, -0.4), y)
+        theirs = kick_off_spot(x, y, unum, opponents_kick_off=True)
+        assert theirs[0] <= -0.4 and math.hypot(*theirs) >= 2.5 - 1e-9
+        if math.hypot(min(x, -0.4), y) < 4.0:
+            assert abs(theirs[1]) >= 1.2 - 1e-9 and (theirs[1] > 0) == (unum % 2 == 0)
+        else:
+            assert theirs == (min(x, -0.4), y)
+
+
 def test_malformed_message_raises_and_changes_nothing():
     agent = Agent(AgentConfig("Mine", 2))
     agent.step(_sense(1.0, "BeforeKickOff", 2, "left"))
