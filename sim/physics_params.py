@@ -65,7 +65,10 @@ sessions), benchmarks/bench_sim.py.
   candidate so far is ``sim/physics_candidates/ode_friction.toml`` (no-slip post-solve for the robot, a ball
   that cannot slip on foot or ground): the real kick's jam and the stand-ups that stay down are reproduced
   (objective 1.496 -> 0.960 with the kick and 20 m walk fixtures and the ball roll); its header lists what it
-  breaks.
+  breaks. (With the kick of the current motions it jams the ball: 1.67 m against the real 4.09; the ball contacts
+  below fit it.) ``sim/physics_candidates/noslip.toml`` (the no-slip post-solve alone) makes the lying-on-back
+  stand-up agree (live transfer: ours 0/10 -> 10/10 at 2.54 s, real 8/10 at 2.54 s) but breaks 4-7 tests of
+  skills tuned on these defaults and costs 1.8x the physics CPU; its header has the figures.
 * **Ball contacts, fitted on the real kick and the real roll (2026-11-26).** SimSpark's ball contacts have
   μ = ∞ with force-dependent slip 0.3 m/s per N (the ball's 0.6 averaged with 5e-3), so the tangential force
   a ball contact can carry grows with the slip, not with the normal force. Two consequences MuJoCo's Coulomb
