@@ -14,14 +14,20 @@ from sim.match import MatchConfig, run_match
 from sim.match_batch import append_result, batch_configs, finished_ids, read_results, run_batch
 from sim.ray_executor import RayExecutor
 
+#: Agent worker processes of a single match (`sim.agent_processes`): with the engine's process, 3 processes
+#: share the 2 cores of the project's machines; the agents are ~3/4 of a match's CPU (issue 15, "Speed").
+DEFAULT_AGENT_PROCESSES = 2
+
 
 def run_and_report(*, players: int, duration_s: float, matches: int, workers: int, seed: int, out: Path,
                    log: bool, team_left: str, team_right: str, resume: bool,
                    ray_address: str | None = None, left: str = "ours",
-                   right: str = "ours") -> tuple[list[str], list[dict]]:
+                   right: str = "ours", agent_processes: int | None = None) -> tuple[list[str], list[dict]]:
     """Play the matches (one with a live game-time bar, a batch with a per-match bar); return report lines.
 
-    With ``ray_address`` the batch runs as Ray tasks (`sim.ray_executor`); the checkpoint stays here."""
+    With ``ray_address`` the batch runs as Ray tasks (`sim.ray_executor`); the checkpoint stays here. A single
+    match runs its agents in ``agent_processes`` worker processes (`sim.match.run_match`; None: 2); a batch
+    hosts them in each match's process."""
     checkpoint = out / "results.jsonl"
     base = MatchConfig(team_left=team_left, team_right=team_right, players_per_team=players, duration_s=duration_s,
                        seed=seed, log_path=str(out / "match.log.gz") if log else None, match_id="match")
@@ -39,7 +45,8 @@ def run_and_report(*, players: int, duration_s: float, matches: int, workers: in
         finally:
             executor.shutdown()
     elif matches == 1 and workers <= 1:
-        results = _single(configs[0], checkpoint, make_agent)
+        results = _single(configs[0], checkpoint, make_agent,
+                          DEFAULT_AGENT_PROCESSES if agent_processes is None else agent_processes)
     else:
         with tqdm(total=len(configs), desc="matches", unit="match") as bar:
             results = run_batch(configs, make_agent, checkpoint, workers, on_result=lambda _: bar.update(1))
@@ -47,15 +54,17 @@ def run_and_report(*, players: int, duration_s: float, matches: int, workers: in
     return summary_lines(results) + [f"results: {checkpoint}", f"plot: {plot}"], results
 
 
-def _single(config: MatchConfig, checkpoint: Path, make_agent: SideAgents) -> list[dict[str, Any]]:
-    """One match in this process, so the bar can follow its game time; checkpointed like a batch."""
+def _single(config: MatchConfig, checkpoint: Path, make_agent: SideAgents,
+            agent_processes: int = 0) -> list[dict[str, Any]]:
+    """One match run from this process (its agents in ``agent_processes`` workers), so the bar can follow its
+    game time; checkpointed like a batch."""
     if config.match_id not in finished_ids(checkpoint):
         with tqdm(total=round(config.duration_s), desc="game time", unit="s") as bar:
             def progress(game_time_s: float, _duration_s: float) -> None:
                 bar.n = min(round(game_time_s), bar.total)
                 bar.refresh()
 
-            append_result(checkpoint, asdict(run_match(config, make_agent, progress)))
+            append_result(checkpoint, asdict(run_match(config, make_agent, progress, agent_processes)))
     return read_results(checkpoint)
 
 

@@ -255,11 +255,27 @@ class SimEngine:
     def step(self) -> dict[int, bytes]:
         """One 20 ms cycle (order in the module docstring); returns agent id -> sense payload (unframed),
         the messages made at the end of the previous step."""
+        out = self.begin_step()
+        self.finish_step()
+        return out
+
+    def begin_step(self) -> dict[int, bytes]:
+        """The first half of `step` (its points 1-3): actions applied, beams done; returns what `step` returns.
+
+        The messages are final here, before the physics step: a host may hand them to its agents now and run
+        `finish_step` while they think (sim.agent_processes), as long as it passes their replies to `receive`
+        only after `finish_step` returned (that one clears every agent's ``(syn)``). ``begin_step`` then
+        ``finish_step`` is `step`, byte for byte.
+        """
         beams = self._apply_actions()
         self.world.begin_cycle()
         for link, beam in beams:
             self._beam(link, beam)
         out, self._outbox = self._outbox, {}
+        return {key: payload for key, payload in out.items() if key in self.agents}
+
+    def finish_step(self) -> None:
+        """The second half of `step` (its points 4-5): physics, referee, poses, this step's sense messages."""
         self.world.step()
         self.cycle += 1
         self.referee.update(self.world)
@@ -267,7 +283,6 @@ class SimEngine:
         self._outbox = self._percepts()
         for link in self.agents.values():
             link.synced = False
-        return {key: payload for key, payload in out.items() if key in self.agents}
 
     def _apply_actions(self) -> list[tuple[AgentLink, Beam]]:
         beams: list[tuple[AgentLink, Beam]] = []

@@ -128,53 +128,95 @@ class MatchWatcher:
 
 
 def run_match(config: MatchConfig, make_agent: AgentFactory,
-              progress: Callable[[float, float], None] | None = None) -> MatchResult:
+              progress: Callable[[float, float], None] | None = None, agent_processes: int = 0) -> MatchResult:
     """Play one match headless and return its result.
 
     Args:
         config: teams, size, duration, seed, log.
         make_agent: builds each agent (team name, unum, robot type).
         progress: called about once per game second with (game time s, duration s).
+        agent_processes: 0 hosts the agents in this process (`sim.inprocess`); N >= 1 builds and steps them
+            in N worker processes while this one runs the engine (`sim.agent_processes`): the same match
+            byte for byte, on more cores.
     """
     started = time.perf_counter()
-    engine = SimEngine(seed=config.seed)
-    host = InProcessHost(engine)
-    log_writer = _open_log(config.log_path, engine)
-    guards: list[CrashGuard] = []
-    # Connect one agent per cycle pair: robots built in the same cycle at the same spot knock each other
-    # over on the real server (shared/real-server/README.md), and we mirror that connection habit.
-    for unum in range(1, config.players_per_team + 1):
-        robot_type = config.robot_types[(unum - 1) % len(config.robot_types)]
-        for team in (config.team_left, config.team_right):
+    if agent_processes > 0:
+        from sim.agent_processes import AgentProcessHost
+
+        # The workers fork before the engine exists (nothing of MuJoCo's is copied into them).
+        with AgentProcessHost(_DeferredEngine(), make_agent, agent_processes) as host:
+            host.engine = engine = SimEngine(seed=config.seed)
+            handles = [host.build(team, unum, robot_type) for unum, robot_type, team in _connection_order(config)]
+            for handle in handles:
+                host.connect(handle)
+                host.run(2)
+            watched = _play(config, engine, host.start_cycle, host.end_cycle, progress)
+            agent_errors = host.stats.agent_errors + host.guard_errors
+    else:
+        engine = SimEngine(seed=config.seed)
+        host = InProcessHost(engine)
+        guards: list[CrashGuard] = []
+        # Connect one agent per cycle pair: robots built in the same cycle at the same spot knock each other
+        # over on the real server (shared/real-server/README.md), and we mirror that connection habit.
+        for unum, robot_type, team in _connection_order(config):
             guard = CrashGuard(make_agent(team, unum, robot_type), f"{team} {unum}")
             guards.append(guard)
             host.add(guard)
             host.run(2)
+        watched = _play(config, engine, lambda: host.run(1), lambda: None, progress)
+        agent_errors = host.stats.agent_errors + sum(g.errors for g in guards)
+    referee = engine.referee
+    return MatchResult(
+        match_id=config.match_id, seed=config.seed, score_left=referee.score_left, score_right=referee.score_right,
+        falls=dict(watched.falls), possession=watched.possession(), cycles=host.stats.cycles,
+        game_time_s=round(referee.game_time_s, 2), wall_s=round(time.perf_counter() - started, 2),
+        agent_errors=agent_errors, final_play_mode=referee.play_mode)
+
+
+def _connection_order(config: MatchConfig) -> list[tuple[int, int, str]]:
+    """(unum, robot type, team) in the order the agents connect: left 1, right 1, left 2, ..."""
+    order = []
+    for unum in range(1, config.players_per_team + 1):
+        robot_type = config.robot_types[(unum - 1) % len(config.robot_types)]
+        for team in (config.team_left, config.team_right):
+            order.append((unum, robot_type, team))
+    return order
+
+
+class _DeferredEngine:
+    """Stands for the engine while the agent workers start (`run_match` sets the real one before any use)."""
+
+
+def _play(config: MatchConfig, engine: SimEngine, start_cycle: Callable[[], Any], end_cycle: Callable[[], Any],
+          progress: Callable[[float, float], None] | None) -> MatchWatcher:
+    """The match after the agents connected: cycles until the duration or game over, kick-offs, the watcher,
+    the log. A cycle is ``start_cycle`` (the engine steps), the match's own look at the world, ``end_cycle``
+    (the agents' replies reach the engine); in-process the whole cycle is in ``start_cycle``."""
+    log_writer = _open_log(config.log_path, engine)
     referee = engine.referee
     watcher = MatchWatcher()
     waited_s = 0.0
     last_progress = -1.0
     cycle_s = engine.world.params.cycle_s
-    while referee.play_mode != "GameOver" and referee.game_time_s < config.duration_s:
-        host.run(1)
-        watcher.update(engine.world, referee.play_mode)
+    try:
+        while referee.play_mode != "GameOver" and referee.game_time_s < config.duration_s:
+            start_cycle()
+            watcher.update(engine.world, referee.play_mode)
+            if log_writer is not None:
+                log_writer.on_cycle(engine.cycle)
+            if referee.play_mode == "BeforeKickOff":
+                waited_s += cycle_s
+                if waited_s >= config.kick_off_wait_s:
+                    referee.kick_off(None)
+                    waited_s = 0.0
+            end_cycle()
+            if progress is not None and math.floor(referee.game_time_s) > last_progress:
+                last_progress = math.floor(referee.game_time_s)
+                progress(referee.game_time_s, config.duration_s)
+    finally:
         if log_writer is not None:
-            log_writer.on_cycle(engine.cycle)
-        if referee.play_mode == "BeforeKickOff":
-            waited_s += cycle_s
-            if waited_s >= config.kick_off_wait_s:
-                referee.kick_off(None)
-                waited_s = 0.0
-        if progress is not None and math.floor(referee.game_time_s) > last_progress:
-            last_progress = math.floor(referee.game_time_s)
-            progress(referee.game_time_s, config.duration_s)
-    if log_writer is not None:
-        log_writer.close()
-    return MatchResult(
-        match_id=config.match_id, seed=config.seed, score_left=referee.score_left, score_right=referee.score_right,
-        falls=dict(watcher.falls), possession=watcher.possession(), cycles=host.stats.cycles,
-        game_time_s=round(referee.game_time_s, 2), wall_s=round(time.perf_counter() - started, 2),
-        agent_errors=host.stats.agent_errors + sum(g.errors for g in guards), final_play_mode=referee.play_mode)
+            log_writer.close()
+    return watcher
 
 
 def _open_log(path: str | None, engine: SimEngine) -> Any:

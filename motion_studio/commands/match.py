@@ -28,6 +28,10 @@ def match(
     team_right: Annotated[str, typer.Option()] = "Right",
     resume: Annotated[bool, typer.Option(help="keep finished matches of an earlier run of the same folder")] = True,
     summary_json: Annotated[Optional[bool], typer.Option("--json", help="print the results as JSON")] = False,
+    agent_processes: Annotated[Optional[int], typer.Option(
+        min=0, max=22, help="worker processes that run the agents of a single match while this one runs the "
+                            "simulator (the same match, on more cores); 0 keeps them in this process. "
+                            "Default: 2 for a single match (batches use their cores for parallel matches)")] = None,
 ) -> None:
     """Play matches with our agents and motions; results go to OUT/results.jsonl as each match ends."""
     from motion_studio.match_report import run_and_report
@@ -43,10 +47,15 @@ def match(
         if kind.startswith("cmd:"):
             typer.echo("error: external agent commands (cmd:) are not supported yet", err=True)
             raise typer.Exit(2)
+    if agent_processes is not None and agent_processes > 0 and (matches > 1 or workers > 1 or ray is not None):
+        typer.echo("error: --agent-processes is for a single match (a batch runs whole matches in parallel)",
+                   err=True)
+        raise typer.Exit(2)
     try:
         lines, results = run_and_report(players=players, duration_s=duration, matches=matches, workers=workers,
                                         seed=seed, out=out, log=log, team_left=team_left, team_right=team_right,
-                                        resume=resume, ray_address=ray, left=left, right=right)
+                                        resume=resume, ray_address=ray, left=left, right=right,
+                                        agent_processes=agent_processes)
     except RayUnavailable as error:  # say so, no traceback
         typer.echo(f"error: {error}", err=True)
         raise typer.Exit(2) from None

@@ -98,3 +98,20 @@ def test_match_pool_workers_end_when_the_parent_is_killed(tmp_path):
         assert wait_until_gone(tag, END_TIMEOUT_S) == {}
     finally:
         cleanup(tag)
+
+
+@pytest.mark.parametrize("how", ["SIGINT", "SIGKILL"])
+def test_match_agent_workers_end_with_the_match_process(tmp_path, how):
+    # a single match runs its agents in two worker processes by default (sim.agent_processes)
+    tag = f"match-agents-{uuid.uuid4().hex}"
+    process = start(["match", "--players", "2", "--duration", "60", "--no-log", "--out", str(tmp_path)], tag)
+    try:
+        deadline = time.monotonic() + 60
+        while len(tagged_processes(tag)) < 3 and time.monotonic() < deadline:  # the match and two workers
+            assert process.poll() is None, process.stdout.read()
+            time.sleep(0.2)
+        assert len(tagged_processes(tag)) >= 3
+        stop(process, how)
+        assert wait_until_gone(tag, END_TIMEOUT_S) == {}
+    finally:
+        cleanup(tag)
