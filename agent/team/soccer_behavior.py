@@ -50,6 +50,11 @@ FROZEN_MODES = frozenset({"BeforeKickOff", "Goal_Left", "Goal_Right", "GameOver"
 #: test_striker.py circled the ball 2.5 m before the goal; the real
 #: kick flies 3.2-4.6 m, ours 1.5-2.8 m.
 SHOOT_RANGE_M = 4.0
+#: The shot's window, standing: the ball this far beyond the kick motion's spot (min, max) [m] and this far
+#: across it [m] (measured with motion_studio.kick_rollout on the fitted ball contacts: 3.7-4.5 m from -0.02 to
+#: +0.04 beyond and -0.04 to +0.02 across; 0.7-1.1 m from +0.06 beyond, where the set-piece window still kicks).
+SHOT_FORWARD_M = (-0.02, 0.045)
+SHOT_LATERAL_M = 0.03
 #: After a shot, or a stop whose ball was not in the window, the dribble goes on this long first [s].
 SHOT_COOLDOWN_S = 3.0
 #: A set-piece taker kicks at once when facing the opponent goal within this [deg] (the kick follows the heading).
@@ -169,8 +174,7 @@ class SoccerBehavior:
         forward = seen.forward_m - float(spot.get("ball_forward_m", 0.125))
         left = (seen.left_m or 0.0) - float(spot.get("ball_left_m", 0.0))
         if standing:
-            in_window = kick_window((seen.forward_m, seen.left_m or 0.0), float(spot.get("ball_forward_m", 0.125)),
-                                    float(spot.get("ball_left_m", 0.0)))
+            in_window = SHOT_FORWARD_M[0] <= forward <= SHOT_FORWARD_M[1] and abs(left) <= SHOT_LATERAL_M
         else:
             in_window = 0.0 <= forward <= 0.25 and abs(left) <= 0.06
         return in_window and self._facing(world, target, SET_PIECE_AIM_DEG)
