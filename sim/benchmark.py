@@ -11,6 +11,7 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass
+from typing import Any
 
 from agent.protocol.effectors import Init, Scene, format_actions, joint_velocity_template
 from agent.protocol.sense import parse_sense
@@ -103,3 +104,54 @@ def run(robots: int = 22, cycles: int = 500, warmup_cycles: int = 50, seed: int 
     return BenchResult(robots, cycles, sim_seconds, wall, sim_seconds / wall,
                        sim_seconds / max(world.mujoco_wall_s, 1e-9), world.motors.re_solves - re_solves, fallen,
                        parse)
+
+
+#: Issue 15 item 6 ("Speed"): an 11 v 11 match of our full agents on 2 cores, and the engine alone for 1 robot.
+TARGET_MATCH_RATIO = 1.5
+TARGET_ENGINE_RATIO = 100.0
+
+
+@dataclass(frozen=True)
+class MatchSpeed:
+    """Figures of one timed match: ``ratio`` = cycles x 20 ms / wall s (all simulated time, the kick-off waits
+    too), ``game_ratio`` = game seconds / wall s (the game clock stops before each kick-off); CPU seconds of
+    the engine's process and of the agent workers (0 in-process), so that a figure measured beside other
+    work on the same cores can be read: the wall time of a loaded machine is not the code's."""
+
+    players_per_team: int
+    agent_processes: int
+    cycles: int
+    game_seconds: float
+    wall_seconds: float
+    ratio: float
+    game_ratio: float
+    engine_process_cpu_s: float
+    worker_cpu_s: float
+    score: str
+    agent_errors: int
+
+    def as_dict(self) -> dict[str, float | int | str]:
+        return dict(self.__dict__)
+
+
+def match_speed(make_agent: Any, players_per_team: int = 11, duration_s: float = 20.0, agent_processes: int = 2,
+                seed: int = 0) -> MatchSpeed:
+    """Time one match of ``make_agent``'s agents (`sim.match.run_match`, no log), agents built included."""
+    import resource
+
+    from sim.match import MatchConfig, run_match
+
+    def cpu(who: int) -> float:
+        usage = resource.getrusage(who)
+        return usage.ru_utime + usage.ru_stime
+
+    own, children = cpu(resource.RUSAGE_SELF), cpu(resource.RUSAGE_CHILDREN)
+    start = time.perf_counter()
+    result = run_match(MatchConfig(players_per_team=players_per_team, duration_s=duration_s, seed=seed), make_agent,
+                       agent_processes=agent_processes)
+    wall = time.perf_counter() - start
+    cycle_s = 0.02
+    return MatchSpeed(players_per_team, agent_processes, result.cycles, result.game_time_s, round(wall, 3),
+                      round(result.cycles * cycle_s / wall, 3), round(result.game_time_s / wall, 3),
+                      round(cpu(resource.RUSAGE_SELF) - own, 2), round(cpu(resource.RUSAGE_CHILDREN) - children, 2),
+                      f"{result.score_left}:{result.score_right}", result.agent_errors)
