@@ -48,6 +48,9 @@ def _scaled() -> dict[int, BeamSpot]:
 #: to x = -2.5) or the line-up has to back off first (with the thesis spots the nearest field player of a
 #: 3-player team stood 12 m from the ball and the kick-off ran out its 15 s).
 KICK_OFF_SPOT_M = (-0.5, 0.0)
+#: Unum 3's spot [m]: beside the striker, just outside the centre circle (2.5 m from the centre: at (-1.2, 1.0)
+#: it stood inside, and at the opponents' kick-off the referee moved it to x = -2.5 from there).
+SECOND_ATTACKER_SPOT_M = (-2.2, 1.2)
 #: The ``attack`` formation by unum: goalkeeper, striker at the ball, two forwards beside the centre circle,
 #: then the thesis' defenders and midfielders (the low unums play in small teams, so they are the attackers).
 _ATTACK_FROM_THESIS = {5: 4, 6: 2, 7: 3, 8: 5, 9: 6}
@@ -55,7 +58,7 @@ _ATTACK_FROM_THESIS = {5: 4, 6: 2, 7: 3, 8: 5, 9: 6}
 
 def _attack() -> dict[int, BeamSpot]:
     thesis = _scaled()
-    spots = {1: thesis[1], 2: BeamSpot(*KICK_OFF_SPOT_M), 3: BeamSpot(-1.2, 1.0), 4: BeamSpot(-2.6, -2.0)}
+    spots = {1: thesis[1], 2: BeamSpot(*KICK_OFF_SPOT_M), 3: BeamSpot(*SECOND_ATTACKER_SPOT_M), 4: BeamSpot(-2.6, -2.0)}
     spots.update({unum: thesis[source] for unum, source in _ATTACK_FROM_THESIS.items()})
     spots.update({10: thesis[10], 11: thesis[11]})
     return spots

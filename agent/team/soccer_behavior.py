@@ -193,7 +193,11 @@ class SoccerBehavior:
             return
         seen = world.ball
         if self._key != ("kick",) or self._set_piece_aim is None:
-            self._set_piece_aim = set_piece_target(ball, seen_opponents(world))
+            # A kick-off aims straight: the opponents seen at its start still stand where they were beamed, and
+            # the referee then moves them out of the circle (x = 2.5) into that path; an aim turned away from
+            # them sent the line-up round the ball until the 15 s ran out (ours against ours, on both servers).
+            kick_off = world.game.play_mode.startswith("KickOff_")
+            self._set_piece_aim = set_piece_target(ball, [] if kick_off else seen_opponents(world))
         aim = self._set_piece_aim
         standing = self.motion.idle or self.motion.motion_name == STAND
         if KICK in self.motion.library and standing and seen is not None and seen.forward_m is not None \
