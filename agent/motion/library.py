@@ -7,6 +7,7 @@ Webots files by their file stem. Loading happens here, at construction, never in
 
 from __future__ import annotations
 
+import pickle
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
@@ -87,9 +88,33 @@ class MotionLibrary:
         added = []
         for glob in pattern:
             for path in sorted(Path(folder).glob(glob)):
-                motion = motions.load(path)
+                motion = _load(path)
                 added.append(self.add(motion, motion.name if motion.source_format == motions.XML else path.stem))
         return added
+
+
+#: Motion files read in this process: (path, mtime ns, size) -> the pickled Motion. A match builds 22 agents
+#: with the same ~20 files each; a fresh copy from the pickle is ~3x cheaper than parsing the file again.
+_LOADED: dict[tuple[str, int, int], bytes] = {}
+_LOADED_KEPT = 512
+
+
+def _load(path: Path) -> Motion:
+    """``motions.load(path)``, as a fresh object each time, from the file's pickle if this process read it
+    before unchanged (same modification time and size)."""
+    try:
+        stat = path.stat()
+    except OSError:
+        return motions.load(path)   # raises as it would
+    key = (str(path.resolve()), stat.st_mtime_ns, stat.st_size)
+    blob = _LOADED.get(key)
+    if blob is not None:
+        return pickle.loads(blob)
+    motion = motions.load(path)
+    if len(_LOADED) >= _LOADED_KEPT:
+        _LOADED.clear()
+    _LOADED[key] = pickle.dumps(motion, pickle.HIGHEST_PROTOCOL)
+    return motion
 
 
 def default_library(robot_type: int = 0, folder: str | Path | None = None) -> MotionLibrary:

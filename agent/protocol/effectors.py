@@ -27,6 +27,9 @@ from agent.protocol.sexpr import Atom, Node, ascii_text, read_located
 SAY_MAX_CHARS = 20
 #: Joint effector names of robot types 0-4 (``lle7``/``rle7`` exist on type 4 only).
 JOINT_EFFECTOR = re.compile(r"(?:he[12]|[lr]ae[1-4]|[lr]le[1-7])\Z")
+#: Every name JOINT_EFFECTOR matches, for the per-cycle check (a set lookup; the pattern decides the rest).
+_JOINT_EFFECTORS = frozenset(["he1", "he2"] + [f"{s}ae{i}" for s in "lr" for i in range(1, 5)]
+                             + [f"{s}le{i}" for s in "lr" for i in range(1, 8)])
 _ATOM = re.compile(r"[!-'*-~]+\Z")
 _SAY_CHAR = re.compile(r"[!-'*-~]")  # printable ASCII without space and parentheses
 
@@ -82,7 +85,7 @@ class JointVelocity:
     """Target angular velocity [rad/s] (may be NaN/Inf when parsed from a faulty agent: see ``finite``)."""
 
     def __post_init__(self) -> None:
-        if JOINT_EFFECTOR.match(self.effector) is None:
+        if self.effector not in _JOINT_EFFECTORS and JOINT_EFFECTOR.match(self.effector) is None:
             raise ProtocolError(f"unknown joint effector {self.effector!r}", 0, self.effector[:24].encode())
 
     @property

@@ -140,8 +140,10 @@ class _Projector:
         return (self.offset[0] + gy, self.offset[1] - gx)
 
 
-def _finite(*values: float) -> bool:
-    return all(math.isfinite(value) for value in values)
+def _finite3(a: float, b: float, c: float) -> bool:
+    """All three finite (as ``math.isfinite`` each), without a generator: x * 0.0 is 0.0 for a finite x and NaN
+    for an infinite or NaN one, and a sum with a NaN is NaN (this runs for every sighting of every frame)."""
+    return a * 0.0 + b * 0.0 + c * 0.0 == 0.0
 
 
 def vision_frame(see: See, time_s: float, tilt: mat3.Matrix, cam_rotation: mat3.Matrix,
@@ -161,7 +163,7 @@ def vision_frame(see: See, time_s: float, tilt: mat3.Matrix, cam_rotation: mat3.
     landmarks: dict[str, GroundObservation] = {}
     ball = None
     for obj in see.objects:
-        if not _finite(obj.distance_m, obj.azimuth_deg, obj.elevation_deg):
+        if not _finite3(obj.distance_m, obj.azimuth_deg, obj.elevation_deg):
             continue  # the real server can send (pol nan nan nan); such a sighting tells nothing
         if obj.name == "B":
             ball = projector.ground(obj.distance_m, obj.azimuth_deg, obj.elevation_deg, BALL_RADIUS_M)
@@ -174,7 +176,7 @@ def vision_frame(see: See, time_s: float, tilt: mat3.Matrix, cam_rotation: mat3.
     for player in see.players:
         if player.team == own_team and player.unum == own_unum:
             continue
-        parts = {name: polar for name, polar in player.parts.items() if _finite(*polar)}
+        parts = {name: polar for name, polar in player.parts.items() if _finite3(*polar)}
         if "head" in parts:
             forward, left = projector.free(*parts["head"])
         else:
@@ -186,5 +188,5 @@ def vision_frame(see: See, time_s: float, tilt: mat3.Matrix, cam_rotation: mat3.
         players.append(SeenPlayer(player.team, player.unum, forward, left, tuple(parts)))
     point = projector.ground_point
     lines = [(point(*line.begin), point(*line.end)) for line in see.lines
-             if _finite(*line.begin) and _finite(*line.end)]
+             if _finite3(*line.begin) and _finite3(*line.end)]
     return VisionFrame(time_s, camera_height_m, projector.offset, landmarks, ball, tuple(players), tuple(lines))

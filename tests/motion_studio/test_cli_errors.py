@@ -21,6 +21,7 @@ CASES = [
     (["match", "--players", "12"], ["'--players'", "1 to 11"]),
     (["match", "--duration", "0"], ["'--duration'", "0.02 to 3600"]),
     (["match", "--players", "abc"], ["'--players'", "integer"]),
+    (["match", "--matches", "2", "--agent-processes", "2"], ["--agent-processes", "single match"]),
     (["agent", "--unum", "12"], ["'--unum'", "0 to 11"]),
     (["agent", "--localization", "gps"], ["--localization", "ekf, seed"]),
     (["serve", "--port", "70000"], ["'--port'", "0 to 65535"]),
