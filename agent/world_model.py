@@ -19,6 +19,7 @@ from agent.protocol.perceptors import Sense
 from agent.world import mat3
 from agent.world.field import FIELD_LINES, LANDMARKS
 from agent.world.frames import Pose2D, TeamFrame, wrap_angle_rad
+from agent.world.ball_track import BallTrack
 from agent.world.objects import TeammateReport, Tracked
 from agent.world.orientation import OrientationFilter
 from agent.world.state import BodyState, GameInfo
@@ -56,6 +57,8 @@ class WorldModel:
         self.localizer: Localizer = self._new_localizer()
         self.last_vision: VisionFrame | None = None
         self.ball: Tracked | None = None
+        self.ball_track = BallTrack()
+        """The ball's recent team-frame sightings: its velocity and where it will stop (``agent.world.ball_track``)."""
         self.teammates: dict[int, Tracked] = {}
         """Unum -> last sighting (vision) or report (say), whichever is newer."""
         self.opponents: dict[int, Tracked] = {}
@@ -126,6 +129,7 @@ class WorldModel:
             self.frame = TeamFrame(gs.team)
             self.localizer = self._new_localizer()  # landmark positions change frame
             self.ball, self.teammates, self.opponents = None, {}, {}
+            self.ball_track.clear()
 
     def _update_body(self, sense: Sense) -> None:
         body = self.body
@@ -165,6 +169,8 @@ class WorldModel:
             self.landmarks[name] = tracked(obs.forward_m, obs.left_m)
         if frame.ball is not None:
             self.ball = tracked(frame.ball.forward_m, frame.ball.left_m)
+            if self.ball.x_m is not None and self.ball.y_m is not None:
+                self.ball_track.add(now, self.ball.x_m, self.ball.y_m)
         for player in frame.players:
             if player.team == self.team:
                 if player.unum is not None:
