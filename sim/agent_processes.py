@@ -67,12 +67,13 @@ class AgentProcessHost:
     engine then), and ``host.run(cycles)`` or ``start_cycle``/``end_cycle`` pairs.
 
     Args:
-        engine: the simulation.
+        engine: the simulation; None to set ``host.engine`` after the workers started (before any `connect`):
+            they fork from this process, and need nothing of an engine built before them.
         make_agent: the agent factory, called in the workers (forked: it need not pickle).
         processes: worker processes (>= 1).
     """
 
-    def __init__(self, engine: SimEngine, make_agent: AgentFactory, processes: int = 2) -> None:
+    def __init__(self, engine: SimEngine | None, make_agent: AgentFactory, processes: int = 2) -> None:
         if processes < 1:
             raise ValueError(f"processes must be >= 1, got {processes}")
         self.engine = engine

@@ -1,4 +1,7 @@
-"""Match runner: two teams of in-process agents on our server, with the referee driven as a trainer would.
+"""Match runner: two teams of agents on our server, with the referee driven as a trainer would.
+
+The agents are hosted in this process (`sim.inprocess`) or in worker processes that think while the engine
+steps (`sim.agent_processes`, ``run_match(..., agent_processes=N)``): the same match byte for byte.
 
 The runner plays the role of the human/monitor that starts a real rcssserver3d match: it waits while
 agents connect and beam, sends the kick-off (the server's AutomaticKickOff is off, REFERENCE §4.3) and
@@ -144,7 +147,7 @@ def run_match(config: MatchConfig, make_agent: AgentFactory,
         from sim.agent_processes import AgentProcessHost
 
         # The workers fork before the engine exists (nothing of MuJoCo's is copied into them).
-        with AgentProcessHost(_DeferredEngine(), make_agent, agent_processes) as host:
+        with AgentProcessHost(None, make_agent, agent_processes) as host:
             host.engine = engine = SimEngine(seed=config.seed)
             handles = [host.build(team, unum, robot_type) for unum, robot_type, team in _connection_order(config)]
             for handle in handles:
@@ -181,10 +184,6 @@ def _connection_order(config: MatchConfig) -> list[tuple[int, int, str]]:
         for team in (config.team_left, config.team_right):
             order.append((unum, robot_type, team))
     return order
-
-
-class _DeferredEngine:
-    """Stands for the engine while the agent workers start (`run_match` sets the real one before any use)."""
 
 
 def _play(config: MatchConfig, engine: SimEngine, start_cycle: Callable[[], Any], end_cycle: Callable[[], Any],

@@ -30,6 +30,33 @@ def _replies_of(monkeypatch: pytest.MonkeyPatch, config: MatchConfig, make_agent
     return result, received
 
 
+def test_begin_step_then_finish_step_is_step():
+    from sim.benchmark import WaveAgent
+
+    runs = []
+    for split in (False, True):
+        engine = SimEngine(seed=5)
+        agents = {}
+        for i in range(4):
+            agent = WaveAgent("Left" if i % 2 == 0 else "Right", i % 4, phase=0.3 * i)
+            agent_id = engine.connect()
+            engine.receive(agent_id, agent.connect_message())
+            agents[agent_id] = agent
+        messages = []
+        for _ in range(60):
+            if split:
+                out = engine.begin_step()
+                engine.finish_step()
+            else:
+                out = engine.step()
+            messages.append(out)
+            for agent_id, payload in out.items():
+                engine.receive(agent_id, agents[agent_id].step(payload))
+        runs.append(messages)
+    assert runs[0] == runs[1]
+    assert sum(len(out) for out in runs[0]) > 4 * 50
+
+
 @pytest.mark.parametrize("processes", [1, 2, 3])
 def test_worker_processes_play_the_in_process_match_byte_for_byte(monkeypatch, processes):
     # our soccer agents, two a side, past the kick-off (they walk to the ball): every reply the engine gets
