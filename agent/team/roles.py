@@ -206,8 +206,17 @@ def second_attacker_spot(ball: tuple[float, float], holder: tuple[float, float] 
     return max(FIELD_X_MIN_M, min(FIELD_X_LIMIT_M, x)), max(-FIELD_Y_LIMIT_M, min(FIELD_Y_LIMIT_M, y))
 
 
-def keeper_spot(ball: tuple[float, float] | None) -> tuple[float, float]:
-    """The goalkeeper's guard spot [m]: on its line, following the ball's y within the goal's width."""
+#: A rolling ball that will cross the keeper's line within this of the centre is a shot the keeper blocks [m]
+#: (the goal is 2.1 m wide, REFERENCE §4; a ball and a margin beyond the posts).
+KEEPER_INTERCEPT_HALF_WIDTH_M = 1.3
+
+
+def keeper_spot(ball: tuple[float, float] | None, crossing_y_m: float | None = None) -> tuple[float, float]:
+    """The goalkeeper's guard spot [m]: on its line, following the ball's y within the goal's width; where a
+    rolling ball will cross that line (``crossing_y_m``, from ``agent.world.ball_track``) when it will cross it
+    within ``KEEPER_INTERCEPT_HALF_WIDTH_M`` of the centre (a shot on goal: block it)."""
+    if crossing_y_m is not None and abs(crossing_y_m) <= KEEPER_INTERCEPT_HALF_WIDTH_M:
+        return KEEPER_X_M, max(-KEEPER_HALF_WIDTH_M, min(KEEPER_HALF_WIDTH_M, crossing_y_m))
     y = 0.0 if ball is None else max(-KEEPER_HALF_WIDTH_M, min(KEEPER_HALF_WIDTH_M, 0.3 * ball[1]))
     return KEEPER_X_M, y
 

@@ -35,6 +35,9 @@ from agent.world_model import WorldModel
 
 #: A support or keeper target that moved less than this keeps the running WalkTo [m].
 RETARGET_M = 0.5
+#: The goalkeeper re-targets when its guard spot moved this much [m] (a shot's crossing point moves it less
+#: than ``RETARGET_M`` across a goal 2.1 m wide).
+KEEPER_RETARGET_M = 0.2
 #: Without kick motions the on-ball player walks this far through the ball toward the goal [m].
 DRIBBLE_M = 1.0
 #: The kick motion the library must have for kicking (else the player dribbles).
@@ -103,7 +106,8 @@ class SoccerBehavior:
         set_piece = own_set_piece(game.play_mode, game.side)
         if world.unum == roles.GOALKEEPER_UNUM and not (ball is not None and roles.keeper_plays_ball(ball)):
             self.role = "keeper"
-            self._stand_at(world, roles.keeper_spot(ball), ball)
+            crossing = world.ball_track.crossing_y(roles.KEEPER_X_M)
+            self._stand_at(world, roles.keeper_spot(ball, crossing), ball, KEEPER_RETARGET_M)
             return
         if ball is None:
             self.role = "search"
@@ -235,9 +239,10 @@ class SoccerBehavior:
             return
         self._use(("approach",), WalkToBall)
 
-    def _stand_at(self, world: WorldModel, spot: tuple[float, float], ball: tuple[float, float] | None) -> None:
+    def _stand_at(self, world: WorldModel, spot: tuple[float, float], ball: tuple[float, float] | None,
+                  retarget_m: float = RETARGET_M) -> None:
         target = self._target
-        moved = target is None or math.hypot(spot[0] - target[0], spot[1] - target[1]) > RETARGET_M
+        moved = target is None or math.hypot(spot[0] - target[0], spot[1] - target[1]) > retarget_m
         skill = self.skills.skill
         walking = isinstance(skill, WalkTo) and not skill.done
         if moved or (not walking and not self._on_spot(world, spot)):

@@ -6,6 +6,7 @@ import math
 
 import pytest
 
+from agent.team import roles
 from agent.team.roles import (FIELD_X_MIN_M, SUPPORT_CLEARANCE_M, Candidate, around_ball_deg, choose_on_ball,
                               keeper_spot, on_ball_cost, support_spot)
 
@@ -114,3 +115,48 @@ def test_the_second_attacker_waits_behind_the_ball_away_from_the_on_ball_players
     assert math.dist(spot, ball) == pytest.approx(math.hypot(SECOND_BEHIND_M, 1.5), abs=0.3)
     near_touch_line = second_attacker_spot((2.0, -9.0), holder=(1.0, -8.0))
     assert abs(near_touch_line[1]) <= 9.5
+
+
+def test_the_keeper_blocks_a_shot_where_it_will_cross_its_line():
+    """A shot crossing the keeper's line within the goal (and a ball's margin) moves the guard spot onto the
+    crossing; one going wide, or none, leaves the spot following the ball."""
+    assert roles.keeper_spot((-8.0, 3.0), crossing_y_m=-0.5) == (roles.KEEPER_X_M, -0.5)
+    assert roles.keeper_spot((-8.0, 3.0), crossing_y_m=1.2) == (roles.KEEPER_X_M, roles.KEEPER_HALF_WIDTH_M)
+    assert roles.keeper_spot((-8.0, 3.0), crossing_y_m=2.0) == roles.keeper_spot((-8.0, 3.0))
+    assert roles.keeper_spot((-8.0, 3.0)) == (roles.KEEPER_X_M, 0.8)
+
+
+def test_our_keeper_walks_toward_where_a_shot_on_our_simulator_will_cross_its_line():
+    """Our goalkeeper (unum 1) at its spot; a ball rolls from (-10, 1.2) toward the goal's right half: 0.6 s after
+    the launch the keeper's target is within 0.2 m of where the ball really crosses its line."""
+    import math
+
+    from motion_studio.match_agents import make_agent
+    from sim.engine import SimEngine
+    from sim.inprocess import InProcessHost
+
+    engine = SimEngine(seed=0)
+    host = InProcessHost(engine)
+    agent = make_agent("Left", 1, 0)
+    key = host.add(agent)
+    host.run(10)
+    engine.referee.kick_off("Left")
+    engine.referee.set_play_mode("PlayOn")
+    engine.world.place_robot(key, roles.KEEPER_X_M, 0.0, 0.0)
+    host.run(150)
+    engine.world.set_ball((-10.0, 1.2, 0.042), (-8.0, -1.4, 0.0))
+    host.run(30)
+    role, target = agent.behavior.role, agent.behavior._target
+    crossing = None
+    for _ in range(200):
+        before = engine.world.ball_position()
+        host.run(1)
+        after = engine.world.ball_position()
+        if before[0] >= roles.KEEPER_X_M > after[0]:
+            share = (before[0] - roles.KEEPER_X_M) / (before[0] - after[0])
+            crossing = before[1] + share * (after[1] - before[1])
+            break
+    assert crossing is not None and abs(crossing) < roles.KEEPER_HALF_WIDTH_M
+    assert role == "keeper"
+    assert target is not None and math.isclose(target[0], roles.KEEPER_X_M)
+    assert abs(target[1] - crossing) < 0.2
