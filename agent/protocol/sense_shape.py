@@ -23,14 +23,25 @@ from typing import Any
 from agent.protocol.perceptors import (Accelerometer, ForceResistance, GameState, Gyro, Hear, See, Sense,
                                        TimePerceptor)
 
-#: Shapes kept at most (a server sends a handful: vision or not, which feet touch, hears); past it all go.
-MAX_SHAPES = 64
+#: Shapes kept at most (a server sends each robot a handful: vision or not, which feet touch, hears; the 22
+#: agents of a match in one process share the cache, ~40-130 shapes of all their robot types); past it all go.
+MAX_SHAPES = 256
 
 _NUM = r"([-.0-9]++)"
 _ATOM = r"([!-'*-~]++)"
 _GS = rf"\(GS (?:\(unum (-?\d+)\) \(team {_ATOM}\) )?\(sl (-?\d+)\) \(sr (-?\d+)\) \(t {_NUM}\) \(pm {_ATOM}\)\)"
 _HEAR = rf"\(hear {_ATOM} {_NUM} (self|[-.0-9]++) {_ATOM}\)"
 _FRP_KEY = "(FRP"
+_HEAR_KEY = "(hear"
+_SEE_KEY = "(See"
+_FIRST_FOOT = "(FRP (n "
+
+
+def _key_of(text: str) -> tuple[int, int, bool, str]:
+    """The `ShapeCache` key of a message: only a shape with this key can match it (see ShapeCache)."""
+    foot = text.find(_FIRST_FOOT)
+    first = "" if foot < 0 else text[foot + 8:text.find(")", foot + 8)]
+    return (text.count(_FRP_KEY), text.count(_HEAR_KEY), _SEE_KEY in text, first)
 
 SeeReader = Callable[[str, bytes, int], "tuple[See, int] | None"]
 
@@ -94,6 +105,8 @@ class _Shape:
             self.pattern, self.tail = re.compile("".join(pieces[:see_at])), re.compile("".join(pieces[see_at:]))
         self.order = sense.order
         self.frp_count = len(self.frp)
+        # (foot-pressure predicates, hear predicates, sees, name of the first foot-pressure predicate)
+        self.key = (self.frp_count, len(self.hears), see_at >= 0, self.frp[0][0] if self.frp else "")
         self.joint_names = tuple(joint_names)
         # itemgetter of one index gives the item itself, not a 1-tuple.
         single = len(joint_groups) == 1
@@ -152,8 +165,11 @@ class _Shape:
 
 
 class ShapeCache:
-    """The shapes of the messages parsed so far, looked up by their number of foot-pressure predicates (the
-    part of a shape that changes deep inside a message, where a failed match would cost most).
+    """The shapes of the messages parsed so far, looked up by their numbers of foot-pressure and hear predicates,
+    whether they see and the name of their first foot-pressure predicate (the parts of a shape that change
+    deep inside a message, where a failed match would cost most). Those substrings occur in a message only as
+    its predicates (atoms hold no parentheses), so a shape of another key could never match it: the lookup
+    only skips tries that would fail.
 
     Args:
         see_reader: the fast path's See reader: (text, raw bytes, offset of ``(See``) -> (See, offset after
@@ -162,7 +178,7 @@ class ShapeCache:
 
     def __init__(self, see_reader: SeeReader) -> None:
         self.see_reader = see_reader
-        self._by_frp_count: dict[int, list[_Shape]] = {}
+        self._by_key: dict[tuple[int, int, bool, str], list[_Shape]] = {}
         self._count = 0
 
     def parse(self, text: str, raw: bytes) -> Sense | None:
@@ -171,7 +187,7 @@ class ShapeCache:
         Raises:
             ValueError: a number ``float`` refuses.
         """
-        for shape in self._by_frp_count.get(text.count(_FRP_KEY), ()):
+        for shape in self._by_key.get(_key_of(text), ()):
             sense = shape.read(text, raw, self.see_reader)
             if sense is not None:
                 return sense
@@ -180,8 +196,8 @@ class ShapeCache:
     def learn(self, sense: Sense) -> None:
         """Remember the shape of a message the fast path parsed (its ``order`` lists every predicate)."""
         if self._count >= MAX_SHAPES:
-            self._by_frp_count.clear()
+            self._by_key.clear()
             self._count = 0
         shape = _Shape(sense)
-        self._by_frp_count.setdefault(shape.frp_count, []).append(shape)
+        self._by_key.setdefault(shape.key, []).append(shape)
         self._count += 1
