@@ -73,7 +73,7 @@ def rows(pairs: list[Pair], figures: dict[str, dict], starts: int, absent: str =
         out.append(Row(label, pair_figures["real"].get(key, math.nan), pair_figures["ours"].get(key, math.nan),
                        "; ".join(filter(None, [note, *by_name[case].notes[1:]]))))
     for case in STANDUP_CASES:
-        side = f"from {LIES_ON[case]} ({case})"
+        side = f"lying on its {LIES_ON[case]} (case {case})"
         runs = [name for name, pair in by_name.items() if pair.case.name == case]
         if not runs:
             out.append(Row(f"stand-up {side}: stood 1 s > 0.30 m", math.nan, math.nan, absent))
