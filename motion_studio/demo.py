@@ -64,7 +64,7 @@ def write_preview(path: Path, angles_rad: dict[str, float]) -> Path:
     return path
 
 
-def run_demo(out_dir: Path, match_duration_s: float = 600.0, players_per_team: int = 3) -> list[str]:
+def run_demo(out_dir: Path, match_duration_s: float = 600.0, players_per_team: int = 11) -> list[str]:
     """Model summary, exported models, a preview, then a headless match with a replay; returns report lines."""
     out_dir.mkdir(parents=True, exist_ok=True)
     report = model_summary()
