@@ -47,6 +47,10 @@ class WorldView(Protocol):
                    z_m: float = 0.4) -> None:
         """Place a robot upright (as beam does: rigid pose, velocities zeroed)."""
 
+    def shift_robot(self, team: str, unum: int, x_m: float, y_m: float) -> None:
+        """Translate a robot as it stands (posture, orientation, height kept; velocities zeroed): SimSpark's
+        MoveAgent, with which its referee clears players."""
+
     def ball_touchers(self) -> list[tuple[str, int]]:
         """(team, unum) of robots whose geoms touch the ball in the last physics step."""
 

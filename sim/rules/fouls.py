@@ -374,7 +374,7 @@ class FoulTracker:
                 placer.move(key, x, y, safe=False, z_m=1.0 + p.foul_time * 0.01)
             else:
                 x, y = outside_position(side, key[1], ball_pos[1], c)
-                placer.move(key, x, y)
+                placer.move(key, x, y, z_m=c.agent_radius_m)  # down from its lift, upright
                 self.reset_player(key)
         return reported
 

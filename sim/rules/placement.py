@@ -68,11 +68,16 @@ class Placer:
     # ---- moves ---------------------------------------------------------------------------------------
     def move(self, key: Key, x: float, y: float, *, safe: bool = True, avoid_ball: bool = True,
              z_m: float | None = None) -> tuple[float, float]:
-        """Move a robot (upright, heading kept), first searching a free spot when ``safe``; returns the spot."""
+        """Move a robot, first searching a free spot when ``safe``; returns the spot. Without ``z_m`` the robot
+        is translated as it stands (SimSpark's MoveAgent: posture, orientation and height kept); with it, put
+        upright at that height (heading kept)."""
         self.inside_own_area()
         if safe:
             x, y = self.safe_position(key, x, y, avoid_ball)
-        self.world.move_robot(key[0], key[1], x, y, None, self.config.agent_radius_m if z_m is None else z_m)
+        if z_m is None:
+            self.world.shift_robot(key[0], key[1], x, y)
+        else:
+            self.world.move_robot(key[0], key[1], x, y, None, z_m)
         self.pos[key] = (x, y)
         self.on_move(*key)
         return (x, y)

@@ -64,6 +64,10 @@ class FakeWorld:
         robot.vel = [0.0, 0.0, 0.0]
         self.moves.append((team, unum, x_m, y_m, z_m))
 
+    def shift_robot(self, team, unum, x_m, y_m) -> None:
+        robot = self.bots[(team, unum)]
+        self.move_robot(team, unum, x_m, y_m, None, robot.pos[2])
+
     def ball_touchers(self):
         return list(self.touchers)
 
