@@ -160,7 +160,9 @@ class World:
             geom.contype, geom.conaffinity = _WORLD_BIT, _ALL_BITS
             geom.condim = p.contact_condim
             geom.solref, geom.solimp = list(p.contact_solref), list(p.contact_solimp)
-            geom.friction = [p.friction, 0.005, 0.0001]
+            # MuJoCo takes the larger friction of the two geoms: the field and the goals take the lower of the
+            # two robot frictions, so a foot contact has ``friction`` and every other body part ``body_friction``.
+            geom.friction = [min(p.friction, _body_friction(p)), 0.005, 0.0001]
             if p.surface_layer_m > 0.0:
                 # active below margin - gap = -layer; MuJoCo's reference distance is that depth, as ODE's
                 geom.margin, geom.gap = -p.surface_layer_m, 0.0
@@ -219,10 +221,11 @@ class World:
         template = build_robot_mjspec(robot_type)
         for exclude in list(template.excludes):  # own parts are filtered by the collision bits instead
             template.delete(exclude)
+        feet = {sensor.body for sensor in spec.sensors if sensor.kind == "force"}
         for geom in template.geoms:
             geom.condim = p.contact_condim
             geom.solref, geom.solimp = list(p.contact_solref), list(p.contact_solimp)
-            geom.friction = [p.friction, 0.005, 0.0001]
+            geom.friction = [p.friction if geom.name in feet else _body_friction(p), 0.005, 0.0001]
         for sensor in spec.sensors:
             if sensor.kind == "force":
                 # MuJoCo sums the foot's contacts in C: net force and force-weighted centroid (world frame).
@@ -822,6 +825,11 @@ class World:
         names = [j.effector for j in robot.spec.joints]
         index = np.array([names.index(e) for e in effectors if e in names], dtype=np.intp)
         self.motors.freeze(robot.key, index, self.time_s)
+
+
+def _body_friction(p: PhysicsParams) -> float:
+    """Friction of the robot geoms other than the feet (the static geometry takes the lower of it and ``friction``)."""
+    return p.friction if p.body_friction is None else p.body_friction
 
 
 def _quat_to_matrix(quat: np.ndarray) -> np.ndarray:

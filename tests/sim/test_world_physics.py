@@ -263,3 +263,26 @@ def test_commanding_every_joint_at_once_follows_the_same_rules() -> None:
     motors.target[:] = before
     motors.command_all(values, qpos, world.time_s)
     assert np.array_equal(motors.target, expected) and not np.array_equal(expected, before)
+
+
+def test_feet_keep_their_grip_and_the_other_body_parts_slide_at_body_friction() -> None:
+    # MuJoCo takes the larger friction of two geoms: feet 2, every other robot part and the field 0.95, so a
+    # foot contact has 2 and a lying robot's back, buttocks and arms 0.95 (sim/physics_params.py, issue 12).
+    from sim.physics_params import default_physics_params
+
+    def frictions(world: World) -> dict[str, float]:
+        return {name: float(world.model.geom(name).friction[0]) for name in ("field", "r0_lfoot", "r0_rfoot",
+                                                                            "r0_torso", "r0_lthigh", "r0_llowerarm")}
+
+    world = standing()
+    p = world.params
+    assert p.body_friction is not None and p.body_friction < p.friction
+    assert frictions(world) == {"field": p.body_friction, "r0_lfoot": p.friction, "r0_rfoot": p.friction,
+                                "r0_torso": p.body_friction, "r0_lthigh": p.body_friction,
+                                "r0_llowerarm": p.body_friction}
+    icy = World(default_physics_params(friction=0.05))   # a lower foot friction still decides the feet
+    icy.add_robot(0, 0)
+    assert frictions(icy)["field"] == 0.05 and frictions(icy)["r0_lfoot"] == 0.05
+    uniform = World(default_physics_params(body_friction=None))
+    uniform.add_robot(0, 0)
+    assert set(frictions(uniform).values()) == {p.friction}
