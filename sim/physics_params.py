@@ -127,7 +127,12 @@ sessions), benchmarks/bench_sim.py.
   the real robot's state). On the stand-up tuner's own scripted falls onto the back
   (motion_studio.realserver.rollout_standup.StandUpBench, seeds 0, 1, 3, 10 each; real 8 + 9 + 10 = 27/30) ours
   stood in 7 + 9 + 8 = 24/30 with μ 2 and 8 + 7 + 7 = 22/30 with 0.95 (0.5 to 1.2: 21-23/30, the starts that fail
-  change with μ); onto the front 20/20 with both (/work/su/backup/bench.py).
+  change with μ); onto the front 20/20 with both (/work/su/backup/bench.py). Per transfer start
+  (/work/su/backup/travel.py: torso x gained in the 70 cycles from the lowest point before the sit-up): the real
+  robot is bimodal, 0.40-0.42 m in the six starts that stand at once, 0.24-0.28 m in the four whose first attempt
+  fails (0 and 1 stand at the second, 5 and 9 never); ours 0.34 m in every start (μ 2: 0.17 m), so it stands in all.
+  Lying still before the sit-up the real torso moves -0.02 to +0.11 m, ours -0.01 to -0.11 m (backward, with either
+  friction). What splits the real robot's two modes is not found yet.
 * **Drag on robots.** SimSpark applies F = -0.01 v and τ = -0.01 ω to every body. Here the whole-body part
   is free-joint damping of the torso (N_bodies x 0.01 on the linear and angular dofs), exact for a rigid
   translation; the drag of limbs swinging relative to the torso is left out (at most 0.06 N·m at full
