@@ -87,6 +87,7 @@ class SoccerBehavior:
         self._shot_after_s: float | None = None
         self._key: Hashable = None
         self._target: tuple[float, float] | None = None
+        self._second_side: float | None = None
 
     @property
     def motion(self) -> MotionController:
@@ -129,7 +130,8 @@ class SoccerBehavior:
         self.role = "support"
         holder = next(((p.x_m, p.y_m) for p in players if p.unum == self.holder), None)
         if roles.second_attacker(players, self.holder) == world.unum:
-            spot = roles.second_attacker_spot(ball, holder)
+            self._second_side = roles.second_attacker_side(ball, holder, self._second_side)
+            spot = roles.second_attacker_spot(ball, holder, self._second_side)
         else:
             spot = roles.support_spot(world.unum, ball, holder)
         if set_piece is False:

@@ -160,3 +160,15 @@ def test_our_keeper_walks_toward_where_a_shot_on_our_simulator_will_cross_its_li
     assert role == "keeper"
     assert target is not None and math.isclose(target[0], roles.KEEPER_X_M)
     assert abs(target[1] - crossing) < 0.2
+
+
+def test_the_second_attacker_keeps_its_side_until_the_holder_clearly_crosses_the_line():
+    """The holder circling the ball near the ball->goal line does not send the second attacker across behind
+    the ball; a holder 0.5 m over the line onto its side does."""
+    ball = (0.0, 0.0)  # the goal line runs along +x from here
+    assert roles.second_attacker_side(ball, (-1.0, 0.3)) == -1.0  # holder left -> stand right
+    assert roles.second_attacker_side(ball, (-1.0, -0.3), current=-1.0) == -1.0  # 0.3 m over: kept
+    assert roles.second_attacker_side(ball, (-1.0, -0.6), current=-1.0) == 1.0  # 0.6 m over: across
+    assert roles.second_attacker_side(ball, None, current=-1.0) == -1.0
+    right = roles.second_attacker_spot(ball, (-1.0, -0.3), side=-1.0)
+    assert right[1] < 0.0
