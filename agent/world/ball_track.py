@@ -87,13 +87,7 @@ class BallTrack:
     def rest_point(self) -> tuple[float, float] | None:
         """Where the ball will lie still (team frame) [m]: the fitted position plus v / ``ROLL_DECAY_PER_S``;
         None without enough recent sightings."""
-        fit = self._fit()
-        if fit is None:
-            return None
-        _, x, y, vx, vy = fit
-        if math.hypot(vx, vy) < STILL_M_S:
-            return self.samples[-1][1], self.samples[-1][2]
-        return x + vx / ROLL_DECAY_PER_S, y + vy / ROLL_DECAY_PER_S
+        return self.position_after(math.inf)
 
     def position_after(self, dt_s: float) -> tuple[float, float] | None:
         """Where the ball will be ``dt_s`` after its newest sighting (team frame) [m]; None as above."""
