@@ -12,6 +12,7 @@ from motion_studio.match_agents import SideAgents, make_idle_agent
 from sim.agent_processes import AgentBuildError, AgentProcessHost
 from sim.engine import SimEngine
 from sim.match import MatchConfig, run_match
+from tests.sim.crashing_agent import CrashingAgent
 
 
 def _replies_of(monkeypatch: pytest.MonkeyPatch, config: MatchConfig, make_agent, agent_processes: int):
@@ -67,23 +68,6 @@ def test_worker_processes_play_the_in_process_match_byte_for_byte(monkeypatch, p
     assert in_process["final_play_mode"] in {"KickOff_Left", "KickOff_Right", "PlayOn"}
     assert len(replies) > 4 * 100
     assert replies_workers == replies
-
-
-class CrashingAgent:
-    """An idle agent that raises on every 10th sense message (a user's buggy behaviour)."""
-
-    def __init__(self, team, unum, robot_type):
-        self.inner = make_idle_agent(team, unum, robot_type)
-        self.count = 0
-
-    def connect_message(self):
-        return self.inner.connect_message()
-
-    def step(self, sense):
-        self.count += 1
-        if self.count % 10 == 0:
-            raise RuntimeError("boom")
-        return self.inner.step(sense)
 
 
 def test_an_agent_that_raises_in_a_worker_costs_its_cycles_only_as_in_process():

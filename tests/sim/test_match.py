@@ -7,23 +7,7 @@ import pytest
 from motion_studio.match_agents import make_idle_agent as make_agent
 from sim.match import MatchConfig, run_match
 from sim.match_batch import batch_configs, finished_ids, run_batch
-
-
-class CrashingAgent:
-    """Our agent that raises on every 10th sense message (a user's buggy behaviour)."""
-
-    def __init__(self, team, unum, robot_type):
-        self.inner = make_agent(team, unum, robot_type)
-        self.count = 0
-
-    def connect_message(self):
-        return self.inner.connect_message()
-
-    def step(self, sense):
-        self.count += 1
-        if self.count % 10 == 0:
-            raise RuntimeError("boom")
-        return self.inner.step(sense)
+from tests.sim.crashing_agent import CrashingAgent
 
 
 def test_match_kicks_off_and_reports_results(tmp_path):
