@@ -398,9 +398,12 @@ class World:
         a = robot.root_qadr
         q[a:a + 3] = position_m
         q[a + 3:a + 7] = (math.cos(yaw_rad / 2), 0.0, 0.0, math.sin(yaw_rad / 2))
-        span = self.motors.span(robot.key)
+        self._stop_moved(robot)
+
+    def _stop_moved(self, robot: Robot) -> None:
+        """A placed robot's velocities zeroed (root and joints) and its motor history forgotten."""
         self.data.qvel[robot.root_dof:robot.root_dof + 6] = 0.0
-        self.data.qvel[self.motors.dof[span]] = 0.0
+        self.data.qvel[self.motors.dof[self.motors.span(robot.key)]] = 0.0
         self.motors.reset_robot(robot.key)
 
     def place_robot(self, key: int, x_m: float, y_m: float, heading_deg: float | None, z_m: float = 0.4) -> None:
@@ -808,9 +811,7 @@ class World:
         robot = self.robot_of(team, unum)
         a = robot.root_qadr
         self.data.qpos[a:a + 2] = (x_m, y_m)
-        self.data.qvel[robot.root_dof:robot.root_dof + 6] = 0.0
-        self.data.qvel[self.motors.dof[self.motors.span(robot.key)]] = 0.0
-        self.motors.reset_robot(robot.key)
+        self._stop_moved(robot)
         mujoco.mj_kinematics(self.model, self.data)
 
     def ball_touchers(self) -> list[tuple[str, int]]:

@@ -212,8 +212,10 @@ class Dribble(Skill):
             name = RIGHT if left > 0.0 else LEFT
         else:
             name = BACKWARD
-        if walking_forward or name not in motion.library:
-            return None if not walking_forward else MotionRequest(None, head_deg=head)
+        if walking_forward:
+            return MotionRequest(None, head_deg=head)  # stop first
+        if name not in motion.library:
+            return None
         if not motion.idle and motion.motion_name in WALKS:
             return MotionRequest(None, head_deg=head)  # let the walk under way stop first
         self._short, self._short_started = name, False
@@ -278,7 +280,7 @@ class Dribble(Skill):
                             and abs(ball_left) <= c.keep_lateral_m and -0.02 < ball_forward <= c.keep_ahead_m
                             and heading_error <= c.keep_max_deg)
             if self.pushing:
-                return (ball[0] + c.push_through_m * ux, ball[1] + c.push_through_m * uy), False
+                return self._push_point(ball), False
         if along < -c.behind_min_m:
             # Behind the ball: walk at a point on the line target -> ball, the farther behind the ball the
             # farther the robot is off that line, so the walk curves into the line and then through the
@@ -287,7 +289,7 @@ class Dribble(Skill):
             self.pushing = (back <= c.push_start_m and abs(ball_left) <= c.push_lateral_m and ball_forward > 0.0
                             and heading_error <= c.push_max_deg)
             if self.pushing:
-                return (ball[0] + c.push_through_m * ux, ball[1] + c.push_through_m * uy), False
+                return self._push_point(ball), False
             return (ball[0] - back * ux, ball[1] - back * uy), avoid
         self.pushing = False
         # Beside or in front of the ball: go round it on the robot's side, to a point abeam and behind.

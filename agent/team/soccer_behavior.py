@@ -50,8 +50,8 @@ FACE_TOLERANCE_DEG = 20.0
 FROZEN_MODES = frozenset({"BeforeKickOff", "Goal_Left", "Goal_Right", "GameOver", "unknown"})
 #: The on-ball player shoots (the kick motion) instead of dribbling on when the goal is this near [m] (3 m and
 #: 4 m scored 1 and 0 goals in 3 matches on ours, noise; with 3 m the lone striker of tests/scenarios/
-#: test_striker.py circled the ball 2.5 m before the goal; the real
-#: kick flies 3.2-4.6 m, ours 1.5-2.8 m.
+#: test_striker.py circled the ball 2.5 m before the goal). From its window the kick flies about 4 m on both
+#: servers (``SHOT_FORWARD_M``); shooting from 8 or 20 m scored less than dribbling on.
 SHOOT_RANGE_M = 4.0
 #: The shot's window, standing: the ball this far beyond the kick motion's spot (min, max) [m] and this far
 #: across it [m] (measured with motion_studio.kick_rollout on the fitted ball contacts: 3.7-4.5 m from -0.02 to

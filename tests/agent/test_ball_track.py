@@ -74,17 +74,10 @@ def test_our_agent_predicts_where_a_ball_rolling_on_our_simulator_stops(launch):
     """A standing agent watches a launched ball: 0.6 s after the launch its estimate of the velocity is within
     0.15 m/s and of the rest point within 0.15 m of the simulator's truth."""
     from motion_studio.match_agents import make_idle_agent
-    from sim.engine import SimEngine
-    from sim.inprocess import InProcessHost
+    from tests.alone_in_play import alone_in_play
 
-    engine = SimEngine(seed=0)
-    host = InProcessHost(engine)
     agent = make_idle_agent("Left", 2, 0)
-    key = host.add(agent)
-    host.run(10)
-    engine.referee.kick_off("Left")
-    engine.referee.set_play_mode("PlayOn")
-    engine.world.place_robot(key, -3.0, 0.0, 0.0)
+    engine, host = alone_in_play(agent, -3.0, 0.0)
     host.run(100)
     engine.world.set_ball((-2.0, 0.0, 0.042), (launch[0], launch[1], 0.0))
     host.run(30)

@@ -129,20 +129,11 @@ def test_the_keeper_blocks_a_shot_where_it_will_cross_its_line():
 def test_our_keeper_walks_toward_where_a_shot_on_our_simulator_will_cross_its_line():
     """Our goalkeeper (unum 1) at its spot; a ball rolls from (-10, 1.2) toward the goal's right half: 0.6 s after
     the launch the keeper's target is within 0.2 m of where the ball really crosses its line."""
-    import math
-
     from motion_studio.match_agents import make_agent
-    from sim.engine import SimEngine
-    from sim.inprocess import InProcessHost
+    from tests.alone_in_play import alone_in_play
 
-    engine = SimEngine(seed=0)
-    host = InProcessHost(engine)
     agent = make_agent("Left", 1, 0)
-    key = host.add(agent)
-    host.run(10)
-    engine.referee.kick_off("Left")
-    engine.referee.set_play_mode("PlayOn")
-    engine.world.place_robot(key, roles.KEEPER_X_M, 0.0, 0.0)
+    engine, host = alone_in_play(agent, roles.KEEPER_X_M, 0.0)
     host.run(150)
     engine.world.set_ball((-10.0, 1.2, 0.042), (-8.0, -1.4, 0.0))
     host.run(30)

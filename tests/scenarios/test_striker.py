@@ -8,19 +8,14 @@ import pytest
 from motion_studio.match_agents import SideAgents, make_agent
 from sim.engine import SimEngine
 from sim.inprocess import InProcessHost
+from tests.alone_in_play import alone_in_play
 
 CYCLE_S = 0.02
 
 
 def _one_striker(seed: int, robot_m: tuple[float, float], ball_m: tuple[float, float]) -> tuple[SimEngine, InProcessHost]:
     """Unum 2 of the left team alone on the field, in PlayOn, at ``robot_m`` facing the opponent goal."""
-    engine = SimEngine(seed=seed)
-    host = InProcessHost(engine)
-    key = host.add(make_agent("Left", 2, 0))
-    host.run(10)
-    engine.referee.kick_off("Left")
-    engine.referee.set_play_mode("PlayOn")
-    engine.world.place_robot(key, robot_m[0], robot_m[1], 0.0)
+    engine, host = alone_in_play(make_agent("Left", 2, 0), robot_m[0], robot_m[1], seed=seed)
     engine.world.set_ball((ball_m[0], ball_m[1], 0.042))
     return engine, host
 
