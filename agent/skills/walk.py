@@ -57,6 +57,14 @@ class WalkConfig:
     lean_rate_per_s: float = 2.5
     """Largest change of the lean request per second (a sudden full lean can topple the walk); the lean
     starts from 0 whenever the walk is not in its cycle phases."""
+    chain_turn_deg: float = 15.0
+    """A turn motion that leaves more than this of the asked turn is played again at once, without the
+    stance and the settle between [deg] (0 = never). Why: a turn motion turns about ``turn_motion_deg``; with
+    the stance (0.4 s) and the settle after each, a dribbler turning 180 deg beside the ball spent 7 s on it;
+    chained, 3.5 s. A striker alone before 15 starts around the ball (2 seeds, 60 s each, our simulator):
+    the ball's first 1 m push came after 20.5 s on average instead of 23.6 s, no falls either way."""
+    turn_motion_deg: float = 38.0
+    """What one turn motion turns at full gain [deg] (transfer: 38.0 real, 39.7 ours)."""
     settle_after_turn_s: float = 0.3
     """Standing still after a turn motion before walking on [s]."""
     lean_release: float = 0.15
@@ -138,6 +146,11 @@ class _Steer:
         if self.turning is None and not self._settle_cycles:
             return None
         if motion.completed[self.turning] > self._turns_before:
+            left = self._turn_deg - min(self._turn_deg, self.config.turn_motion_deg)
+            if self.config.chain_turn_deg > 0.0 and left > self.config.chain_turn_deg:
+                self._turn_deg = left
+                self._turns_before = motion.completed[self.turning]
+                return self.request(self.turning, turn_deg=self._turn_deg)
             self.turning = None
             self.just_turned = True
             self._settle_cycles = round(self.config.settle_after_turn_s / CYCLE_S)

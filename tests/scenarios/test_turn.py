@@ -9,6 +9,7 @@ import math
 import pytest
 
 from agent.skills.turn import TurnBy, TurnToFace
+from agent.skills.walk import WalkTo
 from motion_studio.scenarios import Scenario
 
 START_M = (-5.0, 0.0)
@@ -53,3 +54,27 @@ def test_turn_by_150_degrees_right_with_localization():
     scenario = _scenario(skill, 30.0)
     _run_until_done(scenario, skill)
     assert _heading_error_deg(scenario.history[-1].heading_deg, 30.0 - 150.0) <= 10.0
+
+
+def test_a_walk_to_a_point_behind_chains_its_turn_motions():
+    """WalkTo a point 3 m behind: the 180 deg turn before the walk is turn motions back to back (no stance
+    and settle between them, ``WalkConfig.chain_turn_deg``), so the robot walks off facing the point
+    within 4.5 s (each stance and settle adds about 0.7 s); it stays upright and arrives."""
+    target = (START_M[0] - 3.0, START_M[1])
+    skill = WalkTo(*target)
+    scenario = _scenario(skill, 0.0)
+    motion = scenario.behavior.motion
+    started = []
+    walking_after_s = None
+    for _ in range(1000):
+        truth = scenario.run(1)[0]
+        assert not truth.fallen, "the robot fell"
+        started += [event.motion for event in motion.events if event.kind == "start"]
+        if walking_after_s is None and motion.motion_name == "walk_forward":
+            walking_after_s = truth.time_s - scenario.history[0].time_s
+        if skill.done:
+            break
+    turns = started[:started.index("stand")]   # the stance comes once, before the walk
+    assert len(turns) >= 4 and set(turns) == {"turn_right"}, started
+    assert walking_after_s is not None and walking_after_s <= 4.5   # measured 3.6 s
+    assert skill.reached
