@@ -17,7 +17,10 @@ the ground phases' angles.
 ``--backend real`` judges the candidates on the real rcssserver3d 0.7.3 instead (one server per worker, each
 in its own loopback namespace; seeded scripted falls as lying starts, the robot reset between rollouts by
 trainer commands: ``motion_studio.realserver.standup_backend``); ``--backend both`` judges them on the real
-server and on ours (its own lay-down starts, ``--sim-starts``; loss: real + ``--sim-weight`` x ours). The real server's contacts
+server and on ours (its own lay-down starts, ``--sim-starts``; loss: real + ``--sim-weight`` x ours). With
+``--transfer-starts`` the real starts are those of ``motion-studio transfer --seed <--starts-seed>`` (the robot
+falls from the zero pose by the transfer case's script and the StandUp skill plays the candidate, as there; with
+``both`` ours plays them too). The real server's contacts
 stick (no Coulomb limit, REFERENCE §2.4): a stand-up that drags the feet or the lying torso across the ground,
 as ours allows, fails there.
 
@@ -384,6 +387,10 @@ def main(argv: list[str] | None = None) -> int:
                         help="where candidates are judged: our simulator in-process (default), the real "
                              "rcssserver3d (one server per worker, each in its own loopback namespace, scripted "
                              "falls as starts), or both (loss: real + --sim-weight x ours from --sim-starts)")
+    parser.add_argument("--transfer-starts", action="store_true",
+                        help="real backend: the lying starts of motion-studio transfer --seed <--starts-seed> (the "
+                             "robot falls from the zero pose by the transfer case's script) instead of the scripted "
+                             "falls")
     parser.add_argument("--sim-weight", type=float, default=1.0, help="weight of our simulator's loss (--backend both)")
     parser.add_argument("--sim-starts", type=int, default=4,
                         help="lying starts on our simulator (--backend both: the MuJoCo tuner's own, --starts-seed, "
@@ -404,7 +411,8 @@ def main(argv: list[str] | None = None) -> int:
 
         ours = default_starts(args.sim_starts, seed=args.starts_seed, noise=args.noise) if args.sim_starts else ()
         evaluator = make_evaluator(args.section, args.backend, args.starts, args.starts_seed, args.noise, args.workers,
-                                   args.target_s, args.time_weight, args.sim_weight, ours)
+                                   args.target_s, args.time_weight, args.sim_weight, ours,
+                                   args.transfer_starts)
     try:
         best = tune(args.section, base, args.generations, starts, args.sigma, args.popsize, args.workers, checkpoint,
                     args.seed, frozen, timing_only=args.timing_only, target_s=args.target_s,
@@ -418,6 +426,7 @@ def main(argv: list[str] | None = None) -> int:
         both = f" --sim-weight {args.sim_weight:g} --sim-starts {args.sim_starts}"
         options = (f" --backend {args.backend}" * (args.backend != "mujoco") + both * (args.backend == "both")
                    + f" --starts-seed {args.starts_seed}" * (args.starts_seed != 1) + " --noise" * args.noise
+                   + " --transfer-starts" * args.transfer_starts
                    + " --timing-only" * args.timing_only
                    + (f" --target-s {args.target_s:g} --time-weight {args.time_weight:g}" if args.time_weight else ""))
         provenance = Provenance.now(f"motion-studio tune standup {args.section} --starts {len(starts)}{options} "

@@ -39,8 +39,9 @@ from agent.skills.base import PlayMotion
 from agent.skills.behavior import SkillBehavior
 from agent.skills.standup import StandUp, at_rest, feet_force_n, upright_on_feet
 from agent.world_model import WorldModel
+from motion_studio.realserver.cases import FALL_SCRIPT_CYCLES
 from motion_studio.realserver.session import RealSession
-from motions.model import Motion
+from motions.model import JointTarget, Motion
 from agent.protocol.constants import CYCLE_S
 
 logger = logging.getLogger(__name__)
@@ -90,10 +91,28 @@ class RealStart:
     side: str
     seed: int
     noise_seed: int | None = None
+    transfer_seed: int | None = None
+    """Not None: the lying start ``seed`` of ``motion-studio transfer --seed transfer_seed`` instead (its case
+    that lies on ``side``, ``transfer.vary_fall``): the robot stands in the zero pose, falls by the case's
+    script and lies as the script left it (no lying pose)."""
+
+    def transfer_case(self):
+        """The transfer case (``cases.Case``) this start copies (``transfer_seed`` set)."""
+        from motion_studio.realserver.cases import CASES
+        from motion_studio.realserver.transfer import LIES_ON, vary_fall
+
+        name = next(name for name, side in LIES_ON.items() if side == self.side)
+        return vary_fall(CASES[name], self.seed, self.transfer_seed)
 
     def plan(self, attempt: int = 0) -> dict:
         """yaw [deg], the fall script (cycle -> effector -> rad/s) and the pose seed; ``attempt`` > 0: the
         script of a retry (a fall that ended on the other side), pushed harder towards the side."""
+        if self.transfer_seed is not None:
+            from motion_studio.realserver.cases import fall_steps
+
+            case = self.transfer_case()
+            return {"yaw_deg": case.heading_deg, "script": fall_steps(case), "pose_seed": None,
+                    "settle_cycles": case.settle_cycles, "spot_m": case.position_m}
         rng = random.Random(f"real-standup/{self.side}/{self.seed}")
         yaw_deg = round(rng.uniform(-180.0, 180.0), 1)
         # measured: ankles toes-up tip the robot onto its front, toes-down onto its back; hips flexed
@@ -112,6 +131,11 @@ def real_starts(side: str, count: int, seed: int = 0, noise: bool = False) -> tu
     """``count`` starts on ``side``; with ``noise`` every start but the first gets a noise seed."""
     return tuple(RealStart(side, seed * 1000 + i, seed * 1000 + 500 + i if noise and i > 0 else None)
                  for i in range(count))
+
+
+def transfer_starts(side: str, count: int, seed: int = 0) -> tuple[RealStart, ...]:
+    """The first ``count`` lying starts on ``side`` of ``motion-studio transfer --seed seed``."""
+    return tuple(RealStart(side, i, None, seed) for i in range(count))
 
 
 # ---- the worlds: the real server, ours ---------------------------------------------------------------
@@ -282,6 +306,19 @@ def lying_pose(stand: Motion, seed: int, name: str = "bench_pose") -> Motion:
     return replace(motion, keyframes=[replace(motion.keyframes[0], duration_s=LYING_POSE_MS / 1000.0)])
 
 
+#: The all-zero pose a transfer start stands in before its fall (the robot as it connects).
+ZERO_POSE = "bench_zero_pose"
+
+
+def zero_pose(stand: Motion) -> Motion:
+    """Every joint of ``stand``'s last keyframe at 0 deg, reached in LYING_POSE_MS."""
+    last = stand.keyframes[-1]
+    targets = {name: JointTarget.from_deg(0.0) for name in last.targets}
+    keyframe = replace(last, name="zero", duration_s=LYING_POSE_MS / 1000.0, targets=targets, set_flag_true=None,
+                       source=None)
+    return Motion(ZERO_POSE, [keyframe], source_format=stand.source_format, first_phase="zero")
+
+
 class StandUpBench:
     """Stand-up rollouts one after the other on one server (real or ours), reset by trainer commands.
 
@@ -370,35 +407,42 @@ class StandUpBench:
         library.gain_bases.update(self.base_library.gain_bases)
         for motion in motions.values():
             library.add(motion)
-        pose = library.get(library.add(lying_pose(library.get("stand"), plan["pose_seed"])))
+        copy = start.transfer_seed is not None  # a transfer start: zero pose, its fall, lying as it fell
+        pose = None if copy else library.get(library.add(lying_pose(library.get("stand"), plan["pose_seed"])))
+        if copy:
+            library.add(zero_pose(library.get("stand")))
         inner.motion = MotionController(library, load_dynamic_params(), self.robot_type)
         # 1. reset (the game clock back to 0 each time keeps it far from half time)
         world.send("(playMode PlayOn)")
         world.send("(time 0)")
         if trace:
             world.mark()
-        inner.set_skill(PlayMotion("stand"))
+        inner.set_skill(PlayMotion(ZERO_POSE if copy else "stand"))
         self._run(POSE_CYCLES)
-        world.send(f"(agent (unum {UNUM})(team Left)(move {SPOT_M[0]} {SPOT_M[1]} {MOVE_Z_M} "
+        if copy:
+            inner.set_skill(None)  # the transfer's robot holds the zero pose with no skill
+        spot = plan.get("spot_m", SPOT_M)
+        world.send(f"(agent (unum {UNUM})(team Left)(move {spot[0]} {spot[1]} {MOVE_Z_M} "
                    f"{plan['yaw_deg'] - 90.0}))")
         self._wake = WAKE_CYCLES
-        self._run(SETTLE_CYCLES)
+        self._run(plan.get("settle_cycles", SETTLE_CYCLES))
         # 2. the fall
         inner.set_skill(None)
         script = plan["script"]
         self._scripted = True
         try:
-            for cycle in range(max(script) + 1):
+            for cycle in range(FALL_SCRIPT_CYCLES if copy else max(script) + 1):
                 self._raw = script.get(cycle)
                 world.step()
         finally:
             self._scripted = False
-        self._run(FALL_MAX_CYCLES, self._resting())
-        # 3. lying in the pose, at rest
-        inner.set_skill(PlayMotion(pose.name))
-        self._run(round(LYING_POSE_MS / 1000 / CYCLE_S) + 2)
-        inner.set_skill(None)
-        self._run(REST_MAX_CYCLES, self._resting())
+        if not copy:
+            self._run(FALL_MAX_CYCLES, self._resting())
+            # 3. lying in the pose, at rest
+            inner.set_skill(PlayMotion(pose.name))
+            self._run(round(LYING_POSE_MS / 1000 / CYCLE_S) + 2)
+            inner.set_skill(None)
+            self._run(REST_MAX_CYCLES, self._resting())
         # 4. the stand-up
         if not trace:
             world.mark()

@@ -19,7 +19,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from motion_studio.realserver.rollout_standup import RealStart, StandUpOutcome, real_starts
+from motion_studio.realserver.rollout_standup import RealStart, StandUpOutcome, real_starts, transfer_starts
 from motion_studio.realserver.standup_pool import RolloutPool, RolloutRequest
 from motions.authoring.standup import STANDUPS, StandUpParams, build_standup, stance_params
 from kinematics.child_process import end_with_parent
@@ -67,6 +67,10 @@ class RealEvaluator:
     sim_weight: float = 1.0
     executor: Executor | None = None
     stance: object = field(default_factory=stance_params)
+    use_skill: bool = False
+    """The agent's StandUp skill plays the candidate (fall detection, rest, retries), as the transfer does."""
+    sim_too: bool = False
+    """The same starts on our simulator as well (the pool's ``sim`` world), weighted by ``sim_weight``."""
 
     def evaluate(self, candidates: list[StandUpParams]) -> list[dict[str, object]]:
         """Loss and per-world figures of each candidate (a pose out of reach is a failed candidate)."""
@@ -87,15 +91,17 @@ class RealEvaluator:
             except ValueError as error:
                 errors[index] = str(error)
                 continue
-            requests += [RolloutRequest({self.section: motion}, self.section, start)
-                         for start, motion in zip(self.starts, motions)]
-            owners += [index] * len(motions)
+            for world in ("real", "sim") if self.sim_too else ("real",):
+                requests += [RolloutRequest({self.section: motion}, self.section, start, self.use_skill, world)
+                             for start, motion in zip(self.starts, motions)]
+                owners += [index] * len(motions)
         outcomes = self.pool.run(requests)
         ours = ([future.result() for future in pending] if pending else
                 [_mujoco_loss(p) for p in packed] if self.mujoco_starts else [])
         per: dict[int, list[StandUpOutcome | None]] = {}
-        for owner, outcome in zip(owners, outcomes):
-            per.setdefault(owner, []).append(outcome)
+        per_sim: dict[int, list[StandUpOutcome | None]] = {}
+        for owner, outcome, request in zip(owners, outcomes, requests):
+            (per if request.world == "real" else per_sim).setdefault(owner, []).append(outcome)
         results = []
         for index in range(len(candidates)):
             if index in errors:
@@ -110,6 +116,12 @@ class RealEvaluator:
             if ours:
                 result["loss"] = float(result["loss"]) + self.sim_weight * float(ours[index]["loss"])
                 result["mujoco"] = ours[index]
+            if index in per_sim:
+                sims = per_sim[index]
+                sim_losses = [rollout_loss(run, self.target_s, self.time_weight) for run in sims]
+                result["loss"] = float(result["loss"]) + self.sim_weight * float(np.mean(sim_losses))
+                result["sim"] = {"losses": [round(v, 3) for v in sim_losses],
+                                 "times_s": [run.time_s if run else None for run in sims]}
             results.append(result)
         return results
 
@@ -121,12 +133,17 @@ class RealEvaluator:
 
 def make_evaluator(section: str, backend: str, count: int, seed: int, noise: bool, workers: int,
                    target_s: float, time_weight: float, sim_weight: float = 1.0,
-                   mujoco_starts: tuple = ()) -> RealEvaluator:
+                   mujoco_starts: tuple = (), transfer: bool = False) -> RealEvaluator:
     """The evaluator of ``backend`` ("real", or "both" with ``mujoco_starts``) with ``count`` real starts on the
-    section's side and ``workers`` real servers (and as many MuJoCo processes)."""
+    section's side (``transfer``: the lying starts of ``motion-studio transfer --seed seed``, no noise, the
+    StandUp skill playing the candidate as there; with "both" ours plays them too) and
+    ``workers`` real servers (and as many MuJoCo processes)."""
     if backend not in BACKENDS:
         raise ValueError(f"unknown backend {backend!r}; known: mujoco, {', '.join(BACKENDS)}")
     ours = tuple(mujoco_starts) if backend == "both" else ()
+    sim_too = backend == "both" and transfer  # ours on the transfer's starts too (the pool's sim world)
     pool = ProcessPoolExecutor(workers, initializer=end_with_parent) if ours else None  # workers die with us
-    return RealEvaluator(section, real_starts(STANDUPS[section], count, seed, noise), RolloutPool(workers),
-                         target_s, time_weight, ours, sim_weight, pool)
+    starts = (transfer_starts(STANDUPS[section], count, seed) if transfer
+              else real_starts(STANDUPS[section], count, seed, noise))
+    return RealEvaluator(section, starts, RolloutPool(workers),
+                         target_s, time_weight, ours, sim_weight, pool, use_skill=transfer, sim_too=sim_too)

@@ -16,6 +16,10 @@ Run as a command it measures the shipped stand-ups (the agent's StandUp skill by
 starts on both servers: stood within 3 s (issue 12), stood at all, median and worst time::
 
     python -m motion_studio.realserver.standup_pool --starts 40 --seed 100 --worlds real,sim
+
+``--transfer`` takes the lying starts of ``motion-studio transfer --seed SEED`` instead (the same outcome per start
+as the transfer's real runs, without a server restart per run). Run it outside netns.sh: each worker makes its own
+namespace, and inside one they would share ports.
 """
 
 from __future__ import annotations
@@ -59,7 +63,8 @@ class RolloutRequest:
         from motions.xml_phase import dumps_xml
 
         return json.dumps({"motions": {name: dumps_xml(motion) for name, motion in self.motions.items()},
-                           "play": self.play, "start": [self.start.side, self.start.seed, self.start.noise_seed],
+                           "play": self.play, "start": [self.start.side, self.start.seed, self.start.noise_seed,
+                                                          self.start.transfer_seed],
                            "use_skill": self.use_skill, "world": self.world, "trace": self.trace,
                            "robot_type": self.robot_type})
 
@@ -230,11 +235,11 @@ def _worker(workdir: Path, scripts: Path | None, motions_dir: Path | None) -> in
             try:
                 request = json.loads(line)
                 motions = {name: loads_xml(text) for name, text in request["motions"].items()}
-                side, seed, noise_seed = request["start"]
+                side, seed, noise_seed, *transfer_seed = request["start"]
                 if request["world"] not in ("real", "sim"):
                     raise ValueError(f"unknown world {request['world']!r}; known: real, sim")
                 outcome = bench(request["world"], request.get("robot_type", 0)).rollout(
-                    motions, request["play"], RealStart(side, seed, noise_seed), request["use_skill"], request["trace"])
+                    motions, request["play"], RealStart(side, seed, noise_seed, *transfer_seed), request["use_skill"], request["trace"])
                 answer = {"ok": True, "outcome": outcome.to_json()}
             except Exception as error:  # the parent logs it and hands the request on once more
                 logger.exception("rollout failed")
@@ -265,13 +270,16 @@ def figures(times_s: list[float | None], target_s: float = TARGET_S) -> dict[str
 
 
 def measure(sides: list[str], count: int, seed: int, worlds: list[str], use_skill: bool, workers: int,
-            motions_dir: Path | None = None, robot_type: int = 0) -> dict[str, dict[str, dict[str, object]]]:
+            motions_dir: Path | None = None, robot_type: int = 0,
+            transfer: bool = False) -> dict[str, dict[str, dict[str, object]]]:
     """The shipped stand-ups (or those of ``motions_dir``) from ``count`` seeded starts per side on each
-    world: side -> world -> :func:`figures` plus the times."""
-    from motion_studio.realserver.rollout_standup import real_starts
+    world (``transfer``: the lying starts of ``motion-studio transfer --seed seed``): side -> world ->
+    :func:`figures` plus the times."""
+    from motion_studio.realserver.rollout_standup import real_starts, transfer_starts
 
+    make_starts = transfer_starts if transfer else real_starts
     requests = [RolloutRequest({}, f"standup_{side}", start, use_skill, world, robot_type=robot_type)
-                for side in sides for world in worlds for start in real_starts(side, count, seed)]
+                for side in sides for world in worlds for start in make_starts(side, count, seed)]
     pool = RolloutPool(workers, motions_dir=motions_dir)
     try:
         outcomes = pool.run(requests)
@@ -300,12 +308,14 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--workers", type=int, default=2)
     parser.add_argument("--type", type=int, default=0, help="robot type (its own stand-ups when it has them)")
     parser.add_argument("--json", type=Path, help="also write the figures as JSON")
+    parser.add_argument("--transfer", action="store_true",
+                        help="the lying starts of motion-studio transfer --seed SEED (zero pose, the case's fall)")
     args = parser.parse_args(argv)
     logging.basicConfig(level=logging.WARNING, format="%(levelname)s %(name)s: %(message)s")
     if args.worker:
         return _worker(args.workdir, args.scripts, args.motions_dir)
     results = measure(args.sides.split(","), args.starts, args.seed, args.worlds.split(","), not args.motion,
-                      args.workers, args.motions_dir, args.type)
+                      args.workers, args.motions_dir, args.type, args.transfer)
     for side, worlds in results.items():
         for world, row in worlds.items():
             print(f"standup_{side} type {args.type} {world:4s}: within {TARGET_S:g} s {row['within']}/{row['starts']} "

@@ -14,7 +14,7 @@ import pytest
 from agent.motion import default_library
 from motion_studio.realserver.rollout_standup import (CYCLE_S, HOLD_S, CycleRecord, RealStart, SimWorld,
                                                       StandUpBench, StandUpOutcome, TruthSample, outcome_of,
-                                                      real_starts)
+                                                      real_starts, transfer_starts)
 from motion_studio.realserver.standup_backend import RealEvaluator, rollout_loss
 from motion_studio.realserver.standup_pool import RolloutRequest
 from motions.authoring.standup import load_standup_params
@@ -33,6 +33,21 @@ def test_starts_are_seeded_and_tip_the_robot_towards_their_side():
     starts = real_starts("front", 4, seed=2, noise=True)
     assert [s.seed for s in starts] == [2000, 2001, 2002, 2003]
     assert starts[0].noise_seed is None and all(s.noise_seed is not None for s in starts[1:])
+
+
+def test_transfer_starts_copy_the_lying_starts_of_motion_studio_transfer():
+    from motion_studio.realserver.cases import CASES, fall_steps
+    from motion_studio.realserver.transfer import vary_fall
+
+    starts = transfer_starts("back", 10, seed=0)
+    case = vary_fall(CASES["standup_front"], 5, 0)  # the transfer case that lies on its back
+    plan = starts[5].plan()
+    assert plan["script"] == fall_steps(case) and plan["settle_cycles"] == case.settle_cycles
+    assert plan["spot_m"] == case.position_m and plan["yaw_deg"] == case.heading_deg
+    assert starts[0].plan()["script"] == fall_steps(CASES["standup_front"])  # start 0: the case as shipped
+    assert transfer_starts("front", 1)[0].transfer_case().name == "standup_back"
+    request = RolloutRequest({}, "standup_back", starts[5], use_skill=True, world="sim")
+    assert json.loads(request.to_json())["start"] == ["back", 5, None, 0]
 
 
 def _sample(cycle: int, z: float, up_z: float = 1.0) -> TruthSample:
@@ -81,8 +96,9 @@ def test_on_our_simulator_a_seeded_fall_ends_lying_and_the_shipped_standup_gets_
 def test_the_next_rollout_starts_from_a_trainer_reset_on_the_same_server(sim_bench):
     library = default_library(0)
     motion = library.get("standup_back")
-    first = sim_bench.rollout({"standup_back": motion}, "standup_back", RealStart("back", 5))
-    again = sim_bench.rollout({"standup_back": motion}, "standup_back", RealStart("back", 5))
+    # start 3: the shipped stand-up gets up from it on ours (since the transfer-start tuning, not from start 5)
+    first = sim_bench.rollout({"standup_back": motion}, "standup_back", RealStart("back", 3))
+    again = sim_bench.rollout({"standup_back": motion}, "standup_back", RealStart("back", 3))
     assert first.time_s is not None and again.time_s is not None
     assert abs(first.lying_up_z - again.lying_up_z) < 0.1
 
