@@ -147,7 +147,14 @@ class MotionController:
         self._effector = {j.perceptor: j.effector for j in self.joints}
         margin = math.radians(self.config.joint_margin_deg)
         self._bounds = {j.perceptor: (j.min_rad + margin, j.max_rad - margin) for j in self.joints}
-        self._max_speed = {j.perceptor: j.max_speed_rad_s for j in self.joints}
+        # Commands are capped at type 0's joint speeds too [rad/s]: the motions were authored and tuned on
+        # type 0, where the walk's ankle pitch saturates at 6.14 rad/s in a quarter of its cycles. Type 2's
+        # ankle pitch goes to 8.81 rad/s (REFERENCE 2.5), so uncapped it played a harder walk than the tuned
+        # one: it curved 38 deg left in 3 s and walked 0.6 m where type 0 walks 1.3 m (a WalkTo of 8 m not
+        # done after 30 s; capped, 14.8 s as on type 0). Slower joints (type 2's ankle roll) keep their own.
+        type0 = {j.perceptor: j.max_speed_rad_s for j in robot_spec(0).joints}
+        self._max_speed = {j.perceptor: min(j.max_speed_rad_s, type0.get(j.perceptor, j.max_speed_rad_s))
+                           for j in self.joints}
         self.flags: dict[str, bool] = {}
         """Flags shared by all motions (``skipIfFlag`` / ``setFlagTrue`` / ``setFlagFalse``)."""
         self.computed_deg: dict[str, float] = {}
