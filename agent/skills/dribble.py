@@ -162,10 +162,8 @@ class Dribble(Skill):
         if near is not None:
             return near
         if self.pushing:
-            point, avoid = self._push_point((bx, by)), False
-            ego = pose.to_ego(*point)
-            if ball_ego[0] > self.config.centre_until_m:
-                ego = ball_ego
+            avoid = False
+            ego = ball_ego if ball_ego[0] > self.config.centre_until_m else pose.to_ego(*self._push_point((bx, by)))
         blocker = self._opponent_ahead(world)
         if blocker is not None:
             # An opponent right in front: step sideways away from it (a side walk stays under the charging
@@ -182,8 +180,6 @@ class Dribble(Skill):
             # None ("surrounded"): walk on toward the point; standing to let the others pass never ends
             # against robots that do not move (a dribbler stood 6 s behind two standing opponents)
         request = self._steer.heading(motion, bearing_deg)
-        if request.motion == FORWARD or request.motion is None:
-            return MotionRequest(request.motion, request.lean, request.turn_deg, request.gain, head)
         return MotionRequest(request.motion, request.lean, request.turn_deg, request.gain, head)
 
     def _near_ball(self, motion: MotionController, heading_rad: float, ball: tuple[float, float],

@@ -146,11 +146,9 @@ class _Steer:
         if self.turning is None and not self._settle_cycles:
             return None
         if motion.completed[self.turning] > self._turns_before:
-            left = self._turn_deg - min(self._turn_deg, self.config.turn_motion_deg)
+            left = self._turn_deg - self.config.turn_motion_deg
             if self.config.chain_turn_deg > 0.0 and left > self.config.chain_turn_deg:
-                self._turn_deg = left
-                self._turns_before = motion.completed[self.turning]
-                return self.request(self.turning, turn_deg=self._turn_deg)
+                return self.turn(motion, left if self.turning == TURN_LEFT else -left)
             self.turning = None
             self.just_turned = True
             self._settle_cycles = round(self.config.settle_after_turn_s / CYCLE_S)

@@ -105,7 +105,8 @@ class RealStart:
         return vary_fall(CASES[name], self.seed, self.transfer_seed)
 
     def plan(self, attempt: int = 0) -> dict:
-        """yaw [deg], the fall script (cycle -> effector -> rad/s) and the pose seed; ``attempt`` > 0: the
+        """yaw [deg], the fall script (cycle -> effector -> rad/s), the pose seed, the spot [m] the robot is moved
+        to and the cycles it settles there before the fall; ``attempt`` > 0: the
         script of a retry (a fall that ended on the other side), pushed harder towards the side."""
         if self.transfer_seed is not None:
             from motion_studio.realserver.cases import fall_steps
@@ -124,7 +125,8 @@ class RealStart:
         cycles = rng.randint(14, 20)
         script = {0: {"lle5": ankle * (1 + skew), "rle5": ankle * (1 - skew), "lle3": hip, "rle3": hip},
                   cycles: {"lle5": 0.0, "rle5": 0.0, "lle3": 0.0, "rle3": 0.0}}
-        return {"yaw_deg": yaw_deg, "script": script, "pose_seed": self.seed}
+        return {"yaw_deg": yaw_deg, "script": script, "pose_seed": self.seed, "settle_cycles": SETTLE_CYCLES,
+                "spot_m": SPOT_M}
 
 
 def real_starts(side: str, count: int, seed: int = 0, noise: bool = False) -> tuple[RealStart, ...]:
@@ -421,11 +423,11 @@ class StandUpBench:
         self._run(POSE_CYCLES)
         if copy:
             inner.set_skill(None)  # the transfer's robot holds the zero pose with no skill
-        spot = plan.get("spot_m", SPOT_M)
+        spot = plan["spot_m"]
         world.send(f"(agent (unum {UNUM})(team Left)(move {spot[0]} {spot[1]} {MOVE_Z_M} "
                    f"{plan['yaw_deg'] - 90.0}))")
         self._wake = WAKE_CYCLES
-        self._run(plan.get("settle_cycles", SETTLE_CYCLES))
+        self._run(plan["settle_cycles"])
         # 2. the fall
         inner.set_skill(None)
         script = plan["script"]
