@@ -196,7 +196,9 @@ class MotorBank:
         rules on whole arrays, without the gathers (every agent commanding every joint is the usual cycle)."""
         angle = qpos[self.qadr]
         inside = (angle > self.min_rad) & (angle < self.max_rad) & (self.frozen_until <= now_s)
-        np.copyto(self.target, np.clip(value_rad_s, self._neg_max_speed, self.max_speed), where=inside)
+        # np.clip's definition, min(max(v, -limit), limit), without its Python wrapper (twice the cost here)
+        clipped = np.minimum(np.maximum(value_rad_s, self._neg_max_speed), self.max_speed)
+        np.copyto(self.target, clipped, where=inside)
 
     def reset_robot(self, key: int) -> None:
         """Forget a robot's motor history (after a placement zeroed its velocities)."""
@@ -238,8 +240,12 @@ class MotorBank:
         self._at_stop = np.zeros(self.target.size, dtype=bool)
         self._any_stop = False
 
-    def predict(self, model: mujoco.MjModel, data: mujoco.MjData) -> None:
+    def predict(self, model: mujoco.MjModel, data: mujoco.MjData,
+                step_start: tuple[np.ndarray, np.ndarray, np.ndarray, float] | None = None) -> None:
         """Choose each motor's servo gain for the coming step and write damping and forces.
+
+        ``step_start`` is the caller's copy of the state the step starts from (qpos, qvel, qacc_warmstart,
+        time), kept for a solve from the step's start (see `check`); None: predict copies it itself.
 
         Per joint, with I the joint-space inertia (diagonal of M: the rest of the robot held, as its motors
         hold it), e = u - q̇ and L the load the motor met in the last step (its torque minus I times the
@@ -272,17 +278,21 @@ class MotorBank:
         self._reset = self._no_reset
         self._pinned = self._no_reset
         # The step's start, for a solve of its own when the last one ran away (see `check`).
-        self._step_start = (data.qpos.copy(), data.qvel.copy(), data.qacc_warmstart.copy(), data.time)
+        if step_start is None:
+            step_start = (data.qpos.copy(), data.qvel.copy(), data.qacc_warmstart.copy(), data.time)
+        self._step_start = step_start
         needed = load + inertia * error / h
-        was_capped = self.gain < kv
-        if self._any_stop:   # a released stop row (gain 0) was no saturated motor
-            was_capped &= ~self._at_stop
-        capped = np.abs(needed) > np.where(was_capped, self._held_limit, limit)
+        was_capped = None   # the usual step: every servo was stiff (`_stiff` is only ever all kv), none capped
+        if self.gain is not self._stiff:
+            was_capped = self.gain < kv
+            if self._any_stop:   # a released stop row (gain 0) was no saturated motor
+                was_capped &= ~self._at_stop
+        capped = np.abs(needed) > (limit if was_capped is None else np.where(was_capped, self._held_limit, limit))
         if not np.count_nonzero(capped):
             self.gain = self._stiff
         else:
             free_motion = np.abs(error - h * (np.sign(needed) * limit - load) / inertia)
-            remaining = np.where(was_capped, np.abs(error), free_motion)
+            remaining = free_motion if was_capped is None else np.where(was_capped, np.abs(error), free_motion)
             self.gain = np.where(capped, limit / np.maximum(remaining, self._least_remaining), kv)
         angle = data.qpos[self.qadr]
         high, low = angle >= self.max_rad, angle <= self.min_rad
@@ -340,6 +350,11 @@ class MotorBank:
                     break
                 velocity, torque = self._record(data)
             return False
+        if self.gain is self._stiff and self.bias is self._no_bias and not self._any_stop:
+            # The usual step (every servo stiff, none held, no joint at a stop): of the rules below only the
+            # bound can apply, so the rest is skipped while no motor exceeded it.
+            if not np.count_nonzero(np.abs(torque) > self._check_limit):
+                return False
         at_stop = self._at_stop
         limit = self.max_torque
         kv = self.params.motor_kv
@@ -420,8 +435,8 @@ class MotorBank:
         servo drove its joint more than `RUNAWAY_RAD_S` past its target velocity, or a released stop row let
         its joint into the stop that much faster than the row allows, solve the step again from its start
         with those motors stiff and those rows held. Returns whether it did (``re_solves`` counts it)."""
-        if self._step_start is None:
-            return False
+        if self._step_start is None or (self.gain is self._stiff and not self._any_stop):
+            return False   # every servo stiff and no stop row: nothing can have run away
         kv = self.params.motor_kv
         beyond = (velocity - self.target) * np.where(self.bias != 0.0, self.bias, self.target - self.start_velocity)
         runaway = (self.gain < kv) & (beyond > 0.0) & (np.abs(velocity - self.target) > RUNAWAY_RAD_S)

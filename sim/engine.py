@@ -35,7 +35,7 @@ from sim.perceptors import wire_joint_order
 from sim.physics_params import PhysicsParams
 from sim.rules.self_collision import BodyPoseArrays
 from sim.vision import CALIBRATION_ERROR_M, Observer, PlayerParts, SeeWriter, VisionConfig, observe, see
-from sim.world import VISIBLE_PARTS, World
+from sim.world import VISIBLE_PARTS, World, row_index
 
 logger = logging.getLogger(__name__)
 
@@ -60,6 +60,8 @@ class _JointCommands(NamedTuple):
 
 
 _MISSING = object()
+#: Head-body tuples whose pose-row indices are kept (see `SimEngine._head_rows`); the cache is cleared past this.
+_HEAD_ROWS_KEPT = 64
 #: Name orders whose motor-bank positions are kept (agents send one order; the cache is cleared past this).
 _USUAL_POSITIONS_KEPT = 256
 
@@ -175,8 +177,9 @@ class SimEngine:
         self._see_writer = SeeWriter(VISIBLE_PARTS)
         # The plain (GS ...) of the last cycle and what it was written from (it rarely changes).
         self._game_state: tuple[tuple[Any, ...], bytes] = ((), b"")
-        # Visible-part bodies of the robots with a team, for vision: (their keys, world layout, body ids).
+        # Visible-part bodies of the robots with a team, for vision: (their keys, world layout, flat xpos indices).
         self._part_bodies: tuple[tuple[int, ...], int, np.ndarray] = ((), -1, np.zeros(0, dtype=np.intp))
+        self._head_row_cache: dict[tuple[int, ...], tuple[np.ndarray, np.ndarray]] = {}
 
     # ---- connections ---------------------------------------------------------------------------------
     def connect(self) -> int:
@@ -516,14 +519,25 @@ class SimEngine:
         if keys != self._part_bodies[0] or world.layout_version != self._part_bodies[1]:
             bodies = [world.by_key[key].part_bodies for key in keys]
             self._part_bodies = (keys, world.layout_version,
-                                 np.concatenate(bodies) if bodies else np.zeros(0, dtype=np.intp))
-        heads = [world.by_key[link.key].head_body for link in seeing]
+                                 row_index(np.concatenate(bodies) if bodies else np.zeros(0, dtype=np.intp), 3))
+        xpos_index, xmat_index = self._head_rows(tuple(world.by_key[link.key].head_body for link in seeing))
         a = world.ball_qadr
-        sighting = observe(data.xpos[heads], data.xmat[heads].reshape(-1, 3, 3),
+        sighting = observe(world.xpos_flat[xpos_index].reshape(-1, 3), world.xmat_flat[xmat_index].reshape(-1, 3, 3),
                            np.array([link.calibration_m for link in seeing]), data.qpos[a:a + 3],
-                           data.xpos[self._part_bodies[2]], self.rng, self.vision)
+                           world.xpos_flat[self._part_bodies[2]].reshape(-1, 3), self.rng, self.vision)
         frames = self._see_writer.frames(sighting, tuple((link.team, link.unum or 0) for link in players))
         return {link.key: frame for link, frame in zip(seeing, frames)}
+
+    def _head_rows(self, heads: tuple[int, ...]) -> tuple[np.ndarray, np.ndarray]:
+        """Flat indices (`sim.world.row_index`) of these head bodies' rows of xpos and xmat, kept per tuple of
+        body ids (which robots see in a cycle follows a few fixed patterns)."""
+        rows = self._head_row_cache.get(heads)
+        if rows is None:
+            if len(self._head_row_cache) >= _HEAD_ROWS_KEPT:
+                self._head_row_cache.clear()
+            bodies = np.array(heads, dtype=np.intp)
+            rows = self._head_row_cache[heads] = (row_index(bodies, 3), row_index(bodies, 9))
+        return rows
 
     def _vision(self, links: list[AgentLink]) -> dict[int, Any]:
         world = self.world

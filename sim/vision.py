@@ -311,11 +311,13 @@ def _clip_to_pyramid(segments: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     direction = end - start
     at_start = start @ _PLANES_T                     # (K, L, 4): signed distance of the start to each plane
     along = direction @ _PLANES_T                    # rate of change along the segment
-    with np.errstate(divide="ignore", invalid="ignore"):
-        t_cross = -at_start / along
-    low = np.maximum(0.0, np.where(along > 0, t_cross, -np.inf).max(axis=2))    # entering a plane
-    high = np.minimum(1.0, np.where(along < 0, t_cross, np.inf).min(axis=2))    # leaving a plane
-    visible = (low < high) & ~((along == 0) & (at_start < 0)).any(axis=2)
+    entering, leaving = along > 0, along < 0
+    # Each bound is a masked reduction starting at 0 (resp. 1), in one ufunc call: a segment parallel to a
+    # plane has no crossing, so its division is skipped instead of run under np.errstate (which costs more).
+    t_cross = np.divide(-at_start, along, where=entering | leaving)
+    low = np.maximum.reduce(t_cross, axis=2, where=entering, initial=0.0)
+    high = np.minimum.reduce(t_cross, axis=2, where=leaving, initial=1.0)
+    visible = (low < high) & ~np.logical_or.reduce((along == 0) & (at_start < 0), axis=2)
     clipped = np.empty(segments.shape)
     np.add(start, low[..., None] * direction, out=clipped[..., 0, :])
     np.add(start, high[..., None] * direction, out=clipped[..., 1, :])

@@ -306,6 +306,8 @@ class World:
             m.dof_damping[robot.root_dof + 3:robot.root_dof + 6] = n_bodies * p.body_angular_drag_nm_s
             self._apply_collision_bits(robot)
         self.motors.bind_model(m)
+        self._geom_owner = self.geom_robot.copy()   # the contact table's owners: -2 marks the ball
+        self._geom_owner[self.ball_geom] = -2
         # Joint angles of every robot in sense-message order, in one gather (see sim.perceptors).
         from sim.perceptors import wire_joint_order
         wire, offsets = [], []
@@ -316,7 +318,11 @@ class World:
         self.wire_offsets = offsets
         self.sensor_geom = np.array(sensor_geoms, dtype=np.intp)
         self.sensor_body = np.array(sensor_bodies, dtype=np.intp)
-        self._sensor_data = np.array(sensor_addresses, dtype=np.intp)[:, None] + np.arange(7)
+        # Contact sensor values: found, force on the ground (3), centroid (3); gathered as the parts are used.
+        addresses = np.array(sensor_addresses, dtype=np.intp)
+        self._sensor_found = addresses
+        self._sensor_force = addresses[:, None] + np.arange(1, 4)
+        self._sensor_centroid = addresses[:, None] + np.arange(4, 7)
         self.frp_active = np.zeros(len(sensor_geoms), dtype=bool)
         self._no_foot_contact = self.frp_active
         self.frp_point = np.zeros((len(sensor_geoms), 3))
@@ -338,6 +344,10 @@ class World:
         motors = self.motors
         self._blow_up_bounds = (motors.min_rad - _BLOW_UP_PAST_STOP_RAD, motors.max_rad + _BLOW_UP_PAST_STOP_RAD)
         self._warning_counts = self.data.warning.number
+        # Flat views of this data's pose arrays and the flat indices of the rows read every cycle (see `row_index`).
+        self.xpos_flat, self.xmat_flat = self.data.xpos.reshape(-1), self.data.xmat.reshape(-1)
+        self._torso_xmat = row_index(self._torso_bodies, 9)
+        self._sensor_xpos, self._sensor_xmat = row_index(self.sensor_body, 3), row_index(self.sensor_body, 9)
 
     def _index_perceptor_rows(self) -> None:
         """Gather indices of `perceptor_rows` (after every recompile): one row per robot into the values
@@ -453,7 +463,7 @@ class World:
         if not self.by_key:
             return
         velocity = self.data.qvel[self._root_lin]
-        rotation = self.data.xmat[self._torso_bodies].reshape(-1, 3, 3)   # poses are current (see step)
+        rotation = self.xmat_flat[self._torso_xmat].reshape(-1, 3, 3)   # poses are current (see step)
         world_acc = (velocity - self.velocity_samples) / self.params.cycle_s
         world_acc[:, 2] += self.params.gravity_m_s2
         # Rᵀ a per robot as a row vector times R (the same sums as the einsum "rji,rj->ri", cheaper).
@@ -466,10 +476,12 @@ class World:
         cycle_start = _save_state(d)
         for substep in range(self.params.substeps):
             ball_velocity = d.qvel[self.ball_dof:self.ball_dof + 3].copy()
-            motors.predict(m, d)
+            # The first substep starts from the cycle's start; predict writes no saved field, so one copy serves
+            # the re-solves here and the motors' own solve from the step's start.
+            start = cycle_start if substep == 0 else _save_state(d)
+            motors.predict(m, d, start)
             passes = self.params.motor_active_set_passes + motors.extra_passes if motors.target.size else 1
-            # The first substep starts from the cycle's start (predict writes no saved field): one copy serves.
-            saved = (cycle_start if substep == 0 else _save_state(d)) if passes > 1 else None
+            saved = start if passes > 1 else None
             for attempt in range(passes):
                 started = time.perf_counter()
                 mujoco.mj_step(m, d)
@@ -490,7 +502,7 @@ class World:
         mujoco.mj_kinematics(m, d)
         self._poses_stale = False
 
-    def _guard_blow_up(self, cycle_start: tuple[np.ndarray, ...],
+    def _guard_blow_up(self, cycle_start: tuple[np.ndarray, np.ndarray, np.ndarray, float],
                        contacts: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None = None) -> None:
         """Catch a robot whose physics is blowing up before MuJoCo's own check does (it only trips at
         accelerations of 1e10, cycles later, when the robot is already kilometres away): a hinge far past
@@ -541,7 +553,7 @@ class World:
         row = self.order.index(robot.key)
         return bool(np.any(owner[robot_rows] == row))
 
-    def _recover_from_divergence(self, cycle_start: tuple[np.ndarray, ...]) -> None:
+    def _recover_from_divergence(self, cycle_start: tuple[np.ndarray, np.ndarray, np.ndarray, float]) -> None:
         """MuJoCo found a non-finite or huge position, velocity or acceleration and reset the whole world to
         its initial state (every robot back at the origin). Go back to this cycle's start instead, with
         the offending body at rest, so one robot's bad state never scrambles a match."""
@@ -579,18 +591,19 @@ class World:
 
     def _contact_table(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None:
         """The last step's contacts for the rebound and the referee, computed once: geoms (n, 2), the robot
-        (row in `order`) owning each geom or -1 (n, 2), rows touching the ball (n,), rows where a robot
-        touches the ball (n,); None without contacts."""
+        (row in `order`) owning each geom, -2 for the ball, else -1 (n, 2), rows touching the ball (n,), rows
+        where a robot touches the ball (n,); None without contacts."""
         d = self.data
         if d.ncon == 0:
             return None
         geoms = d.contact.geom
-        owner = self.geom_robot[geoms]
-        ball = geoms == self.ball_geom
-        ball_rows = ball[:, 0] | ball[:, 1]
+        # Gathered through the transposed geoms, so each side of the contacts is one contiguous row (the column
+        # slices of an (n, 2) array made every test below a strided one); handed on as the (n, 2) view.
+        first, second = owner = self._geom_owner[geoms.T]
+        ball_rows = np.minimum(first, second) == -2   # only the ball is -2
         # Only robots and the ball have bodies of their own, so a ball contact with a robot is one whose
         # other geom belongs to a robot.
-        return geoms, owner, ball_rows, ball_rows & ((owner[:, 0] >= 0) | (owner[:, 1] >= 0))
+        return geoms, owner.T, ball_rows, ball_rows & (np.maximum(first, second) >= 0)
 
     def _ball_rebound(self, velocity_before: np.ndarray,
                       contacts: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None) -> None:
@@ -665,16 +678,19 @@ class World:
         if self.sensor_body.size == 0:
             return
         d = self.data
-        values = d.sensordata[self._sensor_data]              # (S, 7): found, force (on the ground), centroid
-        force = -values[:, 1:4]                                 # the ground's force on the foot
-        active = (values[:, 0] > 0) & ((force * force).sum(axis=1) > 1e-18)
+        sensordata = d.sensordata
+        # Each part gathered on its own (contiguous (S,) and (S, 3) arrays: column slices of one (S, 7) gather made
+        # every operation below a strided one, several times slower on a few rows).
+        force = -sensordata[self._sensor_force]                 # the ground's force on the foot
+        # (ndarray.sum without its Python wrapper: the same reduction)
+        active = (sensordata[self._sensor_found] > 0) & (np.add.reduce(force * force, axis=1) > 1e-18)
         if not np.count_nonzero(active):
             self.frp_active = active
             return
-        bodies = self.sensor_body
-        rotation = d.xmat[bodies].reshape(-1, 3, 3)
+        rotation = self.xmat_flat[self._sensor_xmat].reshape(-1, 3, 3)
+        centroid = sensordata[self._sensor_centroid] - self.xpos_flat[self._sensor_xpos].reshape(-1, 3)
         # Rᵀ v per sensor as a row vector times R (the same sums as the einsum "sji,sj->si", cheaper).
-        self.frp_point = ((values[:, 4:7] - d.xpos[bodies])[:, None, :] @ rotation)[:, 0]
+        self.frp_point = (centroid[:, None, :] @ rotation)[:, 0]
         self.frp_force = (force[:, None, :] @ rotation)[:, 0]
         self.frp_active = active
 
@@ -765,18 +781,17 @@ class World:
             members = [(row, robot) for row, robot in enumerate(self.by_key.values()) if robot.side is not None]
             rows = [row for row, _ in members]
             self._team_rows = (version, [robot for _, robot in members], self._root_pos[rows].ravel(),
-                               self._root_lin[rows].ravel(), self._torso_bodies[rows])
+                               self._root_lin[rows].ravel(), row_index(self._torso_bodies[rows], 9))
         _, members, position_index, velocity_index, torso = self._team_rows
         if not members:
             return []
-        rotation = self.data.xmat[torso]                          # row-major 3x3 per robot
+        rotation = self.xmat_flat[torso].reshape(-1, 9)            # row-major 3x3 per robot
         position = self.data.qpos[position_index].tolist()
         velocity = self.data.qvel[velocity_index].tolist()
         up_z = rotation[:, 8].tolist()
         heading = np.degrees(np.arctan2(rotation[:, 4], rotation[:, 1])).tolist()
-        return [RobotState(robot.side, robot.unum, robot.robot_type,  # type: ignore[arg-type]
-                           tuple(position[3 * i:3 * i + 3]), tuple(velocity[3 * i:3 * i + 3]),  # type: ignore[arg-type]
-                           up_z[i], heading[i])
+        return [_robot_state(robot.side, robot.unum, robot.robot_type,
+                             tuple(position[3 * i:3 * i + 3]), tuple(velocity[3 * i:3 * i + 3]), up_z[i], heading[i])
                 for i, robot in enumerate(members)]
 
     def ball_pose(self) -> tuple[tuple[float, float, float], tuple[float, ...]]:
@@ -828,6 +843,27 @@ class World:
         self.motors.freeze(robot.key, index, self.time_s)
 
 
+def row_index(rows: np.ndarray, width: int) -> np.ndarray:
+    """Flat indices of whole rows of an (n, ``width``) array, for gathering them from its flat view.
+
+    Why: numpy's row gather of a 2-D array (``xmat[bodies]``) costs ~1.8 us for a few rows, a 1-D gather by
+    these indices and a reshape ~0.3 us, for the same values in the same layout; the world gathers pose rows
+    of MuJoCo's arrays several times a cycle.
+    """
+    return (np.asarray(rows, dtype=np.intp)[:, None] * width + np.arange(width)).ravel()
+
+
+def _robot_state(team: str | None, unum: int | None, robot_type: int, torso_pos_m: tuple[float, ...],
+                 torso_vel_m_s: tuple[float, ...], torso_up_z: float, heading_deg: float) -> RobotState:
+    """The same RobotState as its constructor gives, without the frozen dataclass's __init__ (one
+    object.__setattr__ per field, twice the cost): `World.robots` builds one per robot per cycle, twice in a
+    match (referee and match watcher)."""
+    state = object.__new__(RobotState)
+    state.__dict__.update(team=team, unum=unum, robot_type=robot_type, torso_pos_m=torso_pos_m,
+                          torso_vel_m_s=torso_vel_m_s, torso_up_z=torso_up_z, heading_deg=heading_deg)
+    return state
+
+
 def _body_friction(p: PhysicsParams) -> float:
     """Friction of the robot geoms other than the feet (the static geometry takes the lower of it and ``friction``)."""
     return p.friction if p.body_friction is None else p.body_friction
@@ -839,10 +875,11 @@ def _quat_to_matrix(quat: np.ndarray) -> np.ndarray:
     return out.reshape(3, 3)
 
 
-def _save_state(d: mujoco.MjData) -> tuple[np.ndarray, ...]:
-    return (d.qpos.copy(), d.qvel.copy(), d.qacc_warmstart.copy(), np.array([d.time]))
+def _save_state(d: mujoco.MjData) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:
+    """What a re-solve restores: qpos, qvel, the solver's warm start (copies) and the time [s]."""
+    return (d.qpos.copy(), d.qvel.copy(), d.qacc_warmstart.copy(), d.time)
 
 
-def _restore_state(d: mujoco.MjData, saved: tuple[np.ndarray, ...]) -> None:
+def _restore_state(d: mujoco.MjData, saved: tuple[np.ndarray, np.ndarray, np.ndarray, float]) -> None:
     d.qpos[:], d.qvel[:], d.qacc_warmstart[:] = saved[0], saved[1], saved[2]
-    d.time = float(saved[3][0])
+    d.time = saved[3]

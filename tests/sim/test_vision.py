@@ -82,3 +82,25 @@ def test_spelled_and_printf_numbers_write_the_same_bytes(monkeypatch: pytest.Mon
         written = SeeWriter(VISIBLE_PARTS).frames(sighting, tuple((t.team, t.unum) for t in teams))
         monkeypatch.undo()
         assert written == [format_sense(Sense(None, None, None, None, {}, see=frame)) for frame in typed]
+
+
+def test_line_clipping_equals_the_plain_plane_by_plane_clip() -> None:
+    """`_clip_to_pyramid`'s masked reductions give the bounds of the plain formulation (every crossing, entering
+    planes raise the start, leaving planes lower the end), bit for bit, parallel segments included."""
+    from sim.vision import _PLANES_T, _clip_to_pyramid
+    rng = np.random.default_rng(0)
+    segments = rng.uniform(-10.0, 10.0, (3, 200, 2, 3))
+    segments[:, :40, 1, 0] = segments[:, :40, 0, 0]     # parallel to the x planes' normals' x part
+    segments[:, 40:60, 1] = segments[:, 40:60, 0]       # zero length
+    segments[:, 60:80, :, 1] = 0.0                      # in the camera's own plane
+    start, direction = segments[..., 0, :], segments[..., 1, :] - segments[..., 0, :]
+    at_start, along = start @ _PLANES_T, direction @ _PLANES_T
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t_cross = -at_start / along
+    low = np.maximum(0.0, np.where(along > 0, t_cross, -np.inf).max(axis=2))
+    high = np.minimum(1.0, np.where(along < 0, t_cross, np.inf).min(axis=2))
+    visible = (low < high) & ~((along == 0) & (at_start < 0)).any(axis=2)
+    clipped, got_visible = _clip_to_pyramid(segments)
+    assert np.array_equal(got_visible, visible) and 0 < visible.sum() < visible.size
+    assert np.array_equal(clipped[visible, 0], (start + low[..., None] * direction)[visible])
+    assert np.array_equal(clipped[visible, 1], (start + high[..., None] * direction)[visible])

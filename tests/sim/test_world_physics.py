@@ -195,6 +195,21 @@ def test_body_poses_for_monitors() -> None:
     assert world.ball_pose()[0] == pytest.approx(world.ball_position())
 
 
+def test_robot_states_equal_the_constructed_ones() -> None:
+    """`World.robots` builds its RobotStates without the dataclass constructor: the same values, equality,
+    hash and repr as constructed ones."""
+    from sim.world_api import RobotState
+    world = standing(2)
+    world.set_team(1, "right", 4)
+    cycle(world, 2)
+    for state in world.robots():
+        values = [getattr(state, name) for name in RobotState.__dataclass_fields__]
+        built = RobotState(*values)
+        assert state == built and hash(state) == hash(built) and repr(state) == repr(built)
+        with pytest.raises(AttributeError):
+            state.unum = 3   # type: ignore[misc]
+
+
 def test_world_view_for_the_referee() -> None:
     world = standing(2)
     world.set_team(1, "right", 4)
