@@ -1,0 +1,63 @@
+"""Where the on-ball player aims (``agent.team.attack.goal_target``) and where the next on-ball player waits at
+the opponents' set pieces (``agent.team.soccer_behavior.restart_spot``): pure geometry, team frame [m]."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from agent.team.attack import AIM_YS_M, BEYOND_LINE_M, CLEAR_M, GOAL_LINE_X_M, goal_target
+from agent.team.soccer_behavior import RESTART_BEHIND_M, SET_PIECE_CLEARANCE_M, restart_spot
+
+KEEPER = (14.86, 0.0)  # the seed's goalkeeper beam spot, mirrored into our team frame
+
+
+def _path_clearance(ball, aim, point):
+    sx, sy = aim[0] - ball[0], aim[1] - ball[1]
+    t = max(0.0, min(1.0, ((point[0] - ball[0]) * sx + (point[1] - ball[1]) * sy) / (sx * sx + sy * sy)))
+    return math.hypot(point[0] - ball[0] - t * sx, point[1] - ball[1] - t * sy)
+
+
+def test_an_empty_goal_is_aimed_at_its_centre():
+    assert goal_target((10.0, 2.0), []) == (GOAL_LINE_X_M + BEYOND_LINE_M, 0.0)
+
+
+@pytest.mark.parametrize("ball", [(12.0, 0.0), (14.0, 0.0), (14.65, -0.08), (14.56, -0.03), (14.5, 0.1)])
+def test_a_keeper_in_the_goal_mouth_is_aimed_past_not_at(ball):
+    """Before: as the ball came within 0.3 m of the keeper every path passed within 0.2 m of it and the centre
+    won the tie (the dribbler pushed the ball into the keeper's feet for 50 s)."""
+    aim = goal_target(ball, [KEEPER])
+    assert aim[1] != 0.0
+    assert _path_clearance(ball, (GOAL_LINE_X_M, aim[1]), KEEPER) >= min(CLEAR_M, max(
+        _path_clearance(ball, (GOAL_LINE_X_M, y), KEEPER) for y in AIM_YS_M)) - 1e-9
+
+
+def test_of_two_clear_sides_the_ball_side_is_taken():
+    assert goal_target((12.0, 0.5), [KEEPER])[1] > 0.0
+    assert goal_target((12.0, -0.5), [KEEPER])[1] < 0.0
+
+
+def test_the_aim_under_way_is_kept_while_its_path_stays_clear():
+    """A dribbler lines up on its target line; an aim that flips sides with the ball's noise turns it away."""
+    ball = (12.0, 0.05)
+    assert goal_target(ball, [KEEPER])[1] > 0.0
+    assert goal_target(ball, [KEEPER], previous_y_m=-0.6)[1] == -0.6
+    # ... but not once an opponent stands in that path
+    assert goal_target(ball, [KEEPER, (13.5, -0.25)], previous_y_m=-0.6)[1] != -0.6
+
+
+@pytest.mark.parametrize("ball", [(0.0, 0.0), (3.0, -9.9), (-10.0, 9.9), (-15.0, 10.0), (14.0, 0.0)])
+def test_the_restart_spot_is_behind_the_ball_in_the_field_and_outside_the_referees_distance(ball):
+    x, y = restart_spot(ball)
+    assert math.hypot(x - ball[0], y - ball[1]) >= SET_PIECE_CLEARANCE_M - 1e-9
+    assert abs(x) <= 14.0 + 1e-9 and abs(y) <= 9.5 + 1e-9
+    if abs(ball[0]) < 10.0 and abs(ball[1]) < 9.0:
+        to_goal = math.atan2(-ball[1], 15.0 - ball[0])
+        assert (ball[0] - x) * math.cos(to_goal) + (ball[1] - y) * math.sin(to_goal) == pytest.approx(RESTART_BEHIND_M)
+
+
+def test_at_the_opponents_kick_off_the_restart_spot_is_on_the_centre_line_in_the_own_half():
+    x, y = restart_spot((0.0, 0.0))
+    assert x == pytest.approx(-RESTART_BEHIND_M) and y == pytest.approx(0.0)
+    assert RESTART_BEHIND_M > 2.0  # the centre circle's radius: the referee keeps opponents out of it
