@@ -130,7 +130,7 @@ class Agent:
         world, game = self.world, self.world.game
         if not self.config.say or game.unum is None or game.side is None:
             return []
-        if not slots.may_say(game.unum, game.server_time_s, game.play_mode_since_s):
+        if not slots.may_say(game.unum, game.play_mode_cycles):
             return []
         text = messages.encode(self.compose_message(), self.config.team)
         self.said = self.said[-99:] + [text]

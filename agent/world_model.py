@@ -13,6 +13,7 @@ import math
 import numpy as np
 
 from agent.communication.messages import TeamMessage, decode
+from agent.communication.slots import cycles_elapsed
 from agent.errors import MessageError
 from agent.localization import DEFAULT_LOCALIZER, Localizer, make_localizer
 from agent.protocol.perceptors import Sense
@@ -71,6 +72,7 @@ class WorldModel:
         """The own last team message as the server echoed it (what the teammates know about us)."""
         self.ignored_messages = 0
         """Heard messages dropped: the other team's, or ours that failed to decode (garbled, foreign)."""
+        self._clock_seen = False
         self._last_yaw: float | None = None
         self._odometry: tuple[float, float] | None = None
 
@@ -111,6 +113,11 @@ class WorldModel:
         game = self.game
         game.cycles += 1
         if sense.time is not None:
+            if self._clock_seen:
+                game.play_mode_cycles += cycles_elapsed(game.server_time_s, sense.time.now_s)
+            else:
+                game.play_mode_cycles = round(sense.time.now_s / CYCLE_S)
+                self._clock_seen = True
             game.server_time_s = sense.time.now_s
         gs = sense.game_state
         if gs is None:
@@ -119,6 +126,7 @@ class WorldModel:
         if gs.play_mode != game.play_mode:
             if game.play_mode != "unknown":
                 game.play_mode_since_s = game.server_time_s
+                game.play_mode_cycles = 0
             game.play_mode = gs.play_mode
         if gs.score_left is not None:
             game.score_left, game.score_right = gs.score_left, gs.score_right or 0

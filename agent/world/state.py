@@ -24,7 +24,10 @@ class GameInfo:
     play_mode: str = "unknown"
     """Play mode as the server spells it (REFERENCE §4.2)."""
     play_mode_since_s: float = 0.0
-    """Server time of the last play-mode change [s] (the team's shared clock for say slots, §7.9)."""
+    """Server time of the last play-mode change [s]."""
+    play_mode_cycles: int = 0
+    """Cycles since the last play-mode change (0 in the cycle it is seen; before any change, since server time
+    0): the team's shared clock for say slots (§7.9, ``agent.communication.slots``)."""
     side: str | None = None
     """``left`` / ``right`` once the first GS after init said so; None before."""
     unum: int | None = None
