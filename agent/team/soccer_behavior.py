@@ -26,12 +26,13 @@ from agent.skills.base import PlayMotion, Skill
 from agent.skills.behavior import SkillBehavior
 from agent.skills.dribble import Dribble
 from agent.skills.kick import KickToward
+from agent.skills.kick_lineup import STEP_FORWARD
 from agent.skills.turn import TurnToFace
 from agent.skills.walk import STAND, WalkTo
 from agent.skills.walk_ball import WalkToBall
 from agent.team import roles
 from agent.team.attack import goal_target, seen_opponents, set_piece_target
-from agent.team.set_pieces import TakerMemory, kick_window, own_set_piece
+from agent.team.set_pieces import SET_PIECE_MAX_STEPS, TakerMemory, own_set_piece, set_piece_move
 from agent.world_model import WorldModel
 
 #: A support or keeper target that moved less than this keeps the running WalkTo [m].
@@ -199,8 +200,9 @@ class SoccerBehavior:
 
     def _take_set_piece(self, world: WorldModel, ball: tuple[float, float]) -> None:
         """One kick toward the opponent goal (the taker may touch the ball only once): the kick motion as
-        soon as the robot stands still with the ball in the set-piece window (``set_pieces.kick_window``:
-        wider than the kick skill's, a short kick now beats a long one later), else the kick skill's line-up
+        soon as the robot stands still with the ball in the set-piece window (``set_pieces.set_piece_move``:
+        wider than the kick skill's, a short kick now beats a long one later; kick steps first when the ball
+        lies in its far part, where real kicks grazed it), else the kick skill's line-up
         (straight into it: WalkToBall walked through the ball first, and that touch made the kick a second
         one). On the real server the line-up backed off and walked in again for the whole 15 s of a kick-off
         (its walks cover more there than the strides it plans with)."""
@@ -209,6 +211,9 @@ class SoccerBehavior:
             if skill is None or skill.done:
                 self.role = "set_piece_done"
             return
+        steps = self._key[1] if isinstance(self._key, tuple) and self._key[0] == "set_piece_step" else 0
+        if steps and self.skills.skill is not None and not self.skills.skill.done:
+            return  # a kick step under way
         seen = world.ball
         if self._key != ("kick",) or self._set_piece_aim is None:
             # A kick-off aims straight: the opponents seen at its start still stand where they were beamed, and
@@ -221,9 +226,14 @@ class SoccerBehavior:
         if KICK in self.motion.library and standing and seen is not None and seen.forward_m is not None \
                 and seen.age_s(world.now_s) < 0.2 and not self.skills.recovering:
             spot = self.motion.library.get(KICK).constants
-            if kick_window((seen.forward_m, seen.left_m or 0.0), float(spot.get("ball_forward_m", 0.125)),
-                           float(spot.get("ball_left_m", 0.0))) and self._facing(world, aim, SET_PIECE_AIM_DEG):
-                self._use(("set_piece_kick",), lambda: PlayMotion(KICK))
+            move = set_piece_move((seen.forward_m, seen.left_m or 0.0), float(spot.get("ball_forward_m", 0.125)),
+                                  float(spot.get("ball_left_m", 0.0)),
+                                  steps if STEP_FORWARD in self.motion.library else SET_PIECE_MAX_STEPS)
+            if move is not None and self._facing(world, aim, SET_PIECE_AIM_DEG):
+                if move == "step":
+                    self._use(("set_piece_step", steps + 1), lambda: PlayMotion(STEP_FORWARD))
+                else:
+                    self._use(("set_piece_kick",), lambda: PlayMotion(KICK))
                 return
         if self._key == ("kick",):
             skill = self.skills.skill

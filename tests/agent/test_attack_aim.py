@@ -61,3 +61,18 @@ def test_at_the_opponents_kick_off_the_restart_spot_is_on_the_centre_line_in_the
     x, y = restart_spot((0.0, 0.0))
     assert x == pytest.approx(-RESTART_BEHIND_M) and y == pytest.approx(0.0)
     assert RESTART_BEHIND_M > 2.0  # the centre circle's radius: the referee keeps opponents out of it
+
+
+# --- the set-piece taker's last move ------------------------------------------------------------------------
+SPOT = (0.1254, 0.0018)  # kick.xml's ball_forward_m, ball_left_m
+
+
+@pytest.mark.parametrize("beyond_m, steps, move", [
+    (0.0, 0, "kick"), (0.05, 0, "kick"), (-0.03, 0, "kick"),       # where real kicks flew 2.8-4.0 m
+    (0.075, 0, "step"), (0.12, 3, "step"), (0.12, 4, "kick"),      # grazes on the real server: step in first
+    (0.16, 0, None), (-0.05, 0, None)])                              # outside the window: line up again
+def test_a_set_piece_taker_steps_in_before_kicking_a_ball_in_the_far_part_of_its_window(beyond_m, steps, move):
+    from agent.team.set_pieces import set_piece_move
+
+    assert set_piece_move((SPOT[0] + beyond_m, SPOT[1]), *SPOT, steps_taken=steps) == move
+    assert set_piece_move((SPOT[0] + beyond_m, SPOT[1] + 0.06), *SPOT, steps_taken=steps) is None
