@@ -99,7 +99,7 @@ def ball_spot(truth: Truth, forward_m: float, left_m: float, heading_deg: float 
 
 def run_kick(library: MotionLibrary, motion: str, placement: Placement = Placement(), seed: int = 0,
              position_m: tuple[float, float] = (0.0, 0.0), heading_deg: float = 0.0, max_s: float = 12.0,
-             dynamic: DynamicParams | None = None, stance_motion: str = "stand") -> KickRun:
+             dynamic: DynamicParams | None = None, stance_motion: str = "stand", robot_type: int = 0) -> KickRun:
     """Play ``motion`` once from the stance with the ball at its spot (moved by ``placement``).
 
     Args:
@@ -107,6 +107,7 @@ def run_kick(library: MotionLibrary, motion: str, placement: Placement = Placeme
             ``ball_forward_m`` and ``ball_left_m``.
         max_s: the run stops this long after the kick request at the latest (else when the ball rests
             after the motion ended).
+        robot_type: the robot (0-4) that plays the motions of ``library``.
 
     Raises:
         KeyError: an unknown motion. ValueError: the motion lacks the ball constants.
@@ -116,9 +117,9 @@ def run_kick(library: MotionLibrary, motion: str, placement: Placement = Placeme
         forward, left = kick.constants["ball_forward_m"], kick.constants["ball_left_m"]
     except KeyError:
         raise ValueError(f"motion {motion!r} has no ball_forward_m / ball_left_m constants") from None
-    controller = MotionController(library, dynamic or DynamicParams())
-    scenario = Scenario(PlayMotion(stance_motion), position_m, heading_deg + placement.heading_deg, seed=seed,
-                        controller=controller, recover_falls=False)
+    controller = MotionController(library, dynamic or DynamicParams(), robot_type)
+    scenario = Scenario(PlayMotion(stance_motion), position_m, heading_deg + placement.heading_deg,
+                        robot_type=robot_type, seed=seed, controller=controller, recover_falls=False)
     scenario.run(SETTLE_CYCLES)
     start = scenario.truth()
     # The ball lies where a robot facing the aim would expect it; the robot itself is turned by the error.

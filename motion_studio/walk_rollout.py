@@ -127,11 +127,13 @@ class WalkRun:
         return math.dist(self.truths[-25].torso_m[:2], self.truths[-1].torso_m[:2]) < 0.02
 
 
-def make_controller(library: MotionLibrary, dynamic: DynamicParams | None = None) -> MotionController:
-    """A motion controller over ``library`` with the shipped dynamic elements unless given."""
+def make_controller(library: MotionLibrary, dynamic: DynamicParams | None = None,
+                    robot_type: int = 0) -> MotionController:
+    """A motion controller over ``library`` for ``robot_type`` (its joints, ranges and speeds) with the shipped
+    dynamic elements unless given."""
     from agent.motion import load_dynamic_params
 
-    return MotionController(library, dynamic or load_dynamic_params())
+    return MotionController(library, dynamic or load_dynamic_params(), robot_type)
 
 
 def run_walk(library: MotionLibrary, motion: str, duration_s: float, *, position_m: tuple[float, float] = (-13.5, 0.0),
@@ -145,7 +147,7 @@ def run_walk(library: MotionLibrary, motion: str, duration_s: float, *, position
         KeyError: ``motion`` is not in the library.
     """
     library.get(motion)
-    controller = make_controller(library, dynamic)
+    controller = make_controller(library, dynamic, robot_type)
     request = {"lean": lean} if lean else {}
     scenario = Scenario(PlayMotion(motion, repeat=True, **request), position_m=position_m, heading_deg=heading_deg,
                         controller=controller, recover_falls=False, seed=seed, ball_m=ball_m, robot_type=robot_type)

@@ -64,14 +64,14 @@ def _uniform(rng: np.random.Generator, spread: tuple[float, float, float]) -> tu
 
 
 def motion_trials(kind: str, count: int, seed: int, library: MotionLibrary,
-                  tick: Callable[[], None]) -> list[dict]:
-    """``count`` kicks of one kind, feet alternating, from seeded placements."""
+                  tick: Callable[[], None], robot_type: int = 0) -> list[dict]:
+    """``count`` kicks of one kind, feet alternating, from seeded placements, by a robot of ``robot_type``."""
     rng = np.random.default_rng([seed, KINDS.index(kind)])
     trials = []
     for i in range(count):
         name = kind if i % 2 == 0 else kind + "_left"
         forward, left, heading = _uniform(rng, MOTION_SPREAD)
-        run = run_kick(library, name, Placement(forward, left, heading), seed=seed + i)
+        run = run_kick(library, name, Placement(forward, left, heading), seed=seed + i, robot_type=robot_type)
         trial = {"motion": name, "placement": [round(forward, 3), round(left, 3), round(heading, 2)], **run.figures()}
         # Rest position in the aim frame (x along the aim, y to its left) from the ball's start.
         dx, dy = (b - a for a, b in zip(run.ball_start_m, run.ball_rest_m))
@@ -103,12 +103,12 @@ def summary(trials: list[dict]) -> dict:
 
 
 def _skill_scenario(robot_m: tuple[float, float], heading_deg: float, seed: int, library: MotionLibrary,
-                    ball_m: tuple[float, float] | None = None) -> Scenario:
-    """The robot standing in the walk stance at ``robot_m`` (30 cycles of ``stand``), the ball at ``ball_m``
-    (placed before, so the robot's straight start pose cannot touch a ball placed close)."""
-    controller = MotionController(library, load_dynamic_params())
-    scenario = Scenario(PlayMotion("stand"), robot_m, heading_deg, seed=seed, controller=controller,
-                        recover_falls=False)
+                    ball_m: tuple[float, float] | None = None, robot_type: int = 0) -> Scenario:
+    """A robot of ``robot_type`` standing in the walk stance at ``robot_m`` (30 cycles of ``stand``), the ball
+    at ``ball_m`` (placed before, so the robot's straight start pose cannot touch a ball placed close)."""
+    controller = MotionController(library, load_dynamic_params(), robot_type)
+    scenario = Scenario(PlayMotion("stand"), robot_m, heading_deg, robot_type=robot_type, seed=seed,
+                        controller=controller, recover_falls=False)
     if ball_m is not None:
         scenario.place_ball(ball_m)
     scenario.run(SETTLE_CYCLES)
@@ -141,11 +141,11 @@ def skill_run(scenario: Scenario, skill: KickToward, ball_m: tuple[float, float]
 
 
 def skill_trial(error: tuple[float, float, float], strong: bool, seed: int, library: MotionLibrary,
-                limit_s: float = SKILL_LIMIT_S) -> dict:
+                limit_s: float = SKILL_LIMIT_S, robot_type: int = 0) -> dict:
     """KickToward toward a point SKILL_TARGET_AHEAD_M ahead, the robot standing at the right foot's kick
     spot moved by ``error`` (ball forward m, ball left m, robot heading deg off the aim)."""
     spot = library.get("kick").constants
-    scenario = _skill_scenario((-3.0, 0.0), error[2], seed, library)
+    scenario = _skill_scenario((-3.0, 0.0), error[2], seed, library, robot_type=robot_type)
     truth = scenario.truth()
     ball = ball_spot(truth, spot["ball_forward_m"] + error[0], spot["ball_left_m"] + error[1],
                      truth.heading_deg - error[2])
@@ -155,27 +155,29 @@ def skill_trial(error: tuple[float, float, float], strong: bool, seed: int, libr
     return skill_run(scenario, KickToward(*target, strong=strong), ball, target, limit_s)
 
 
-def skill_trials(count: int, seed: int, library: MotionLibrary, tick: Callable[[], None]) -> list[dict]:
+def skill_trials(count: int, seed: int, library: MotionLibrary, tick: Callable[[], None],
+                 robot_type: int = 0) -> list[dict]:
     """KickToward from just behind the ball (right-foot spot), with seeded placement errors."""
     rng = np.random.default_rng([seed, 7])
     trials = []
     for i in range(count):
         error = tuple(float(rng.uniform(low, high)) for low, high in SKILL_SPREAD)
         strong = i % 2 == 1
-        trial = skill_trial(error, strong, seed + i, library)
+        trial = skill_trial(error, strong, seed + i, library, robot_type=robot_type)
         trials.append({"strong": strong, "placement": [round(v, 3) for v in error], **trial})
         tick()
     return trials
 
 
-def challenge_attempt(distance_m: float, angle_deg: float, strong: bool, seed: int, library: MotionLibrary) -> dict:
+def challenge_attempt(distance_m: float, angle_deg: float, strong: bool, seed: int, library: MotionLibrary,
+                      robot_type: int = 0) -> dict:
     """One kick-challenge attempt (REFERENCE §8.2) toward (0, 0)."""
     angle = math.radians(angle_deg)
     ball = (-distance_m * math.cos(angle), distance_m * math.sin(angle))
     robot = (ball[0] * (1 + CHALLENGE_BEHIND_M / distance_m), ball[1] * (1 + CHALLENGE_BEHIND_M / distance_m))
     heading = math.degrees(math.atan2(ball[1] - robot[1], ball[0] - robot[0]))
     skill = KickToward(0.0, 0.0, strong=strong)
-    scenario = _skill_scenario(robot, heading, seed, library, ball)
+    scenario = _skill_scenario(robot, heading, seed, library, ball, robot_type)
     scenario.set_skill(skill)
     start_s = scenario.truth().time_s
     timing_s = None
@@ -205,22 +207,25 @@ def challenge_attempt(distance_m: float, angle_deg: float, strong: bool, seed: i
 
 
 def challenge(count: int, seed: int, library: MotionLibrary, strong_from_m: float,
-              tick: Callable[[], None]) -> dict:
+              tick: Callable[[], None], robot_type: int = 0) -> dict:
     """The kick challenge: attempts at seeded distances rising from 3 to 12 m, seeded angles."""
     rng = np.random.default_rng([seed, 11])
     distances = np.linspace(3.0, 12.0, count) if count > 1 else np.array([4.0])
     attempts = []
     for i, distance in enumerate(distances):
         angle = float(rng.uniform(-45.0, 45.0))
-        attempts.append(challenge_attempt(float(distance), angle, float(distance) > strong_from_m, seed + i, library))
+        attempts.append(challenge_attempt(float(distance), angle, float(distance) > strong_from_m, seed + i, library,
+                                          robot_type))
         tick()
     return {"score_m": round(float(np.mean([a["score_m"] for a in attempts])), 3), "attempts": attempts,
             "strong_from_m": round(strong_from_m, 2)}
 
 
-def run(quick: bool = False, seed: int = 0, progress: Callable[[int, int], None] | None = None) -> dict:
-    """The kick figures (see the module docstring); JSON-ready."""
-    library = default_library()
+def run(quick: bool = False, seed: int = 0, progress: Callable[[int, int], None] | None = None,
+        robot_type: int = 0) -> dict:
+    """The kick figures of a robot of ``robot_type`` (0-4) with its shipped motions (see the module
+    docstring); JSON-ready, with ``robot_type``."""
+    library = default_library(robot_type)
     per_kind = KICKS_PER_KIND_QUICK if quick else KICKS_PER_KIND
     skills = SKILL_TRIALS_QUICK if quick else SKILL_TRIALS
     attempts = CHALLENGE_ATTEMPTS_QUICK if quick else CHALLENGE_ATTEMPTS
@@ -233,13 +238,13 @@ def run(quick: bool = False, seed: int = 0, progress: Callable[[int, int], None]
         if progress is not None:
             progress(done, total)
 
-    motions = {kind: motion_trials(kind, per_kind, seed, library, tick) for kind in KINDS}
+    motions = {kind: motion_trials(kind, per_kind, seed, library, tick, robot_type) for kind in KINDS}
     summaries = {kind: summary(trials) for kind, trials in motions.items()}
-    skill = skill_trials(skills, seed, library, tick)
+    skill = skill_trials(skills, seed, library, tick, robot_type)
     skill_summary = summary(skill)
     skill_summary["kicked"] = sum(t["kicked"] for t in skill)
     strong_from = (summaries["kick"]["distance_mean_m"] + summaries["kick_strong"]["distance_mean_m"]) / 2
-    kick_challenge = challenge(attempts, seed, library, strong_from, tick)
+    kick_challenge = challenge(attempts, seed, library, strong_from, tick, robot_type)
     kick, strong = summaries["kick"], summaries["kick_strong"]
     passed = {
         "kick_m": kick["distance_mean_m"] >= TARGETS["kick_m"],
@@ -247,7 +252,7 @@ def run(quick: bool = False, seed: int = 0, progress: Callable[[int, int], None]
         "aim_m": strong["distance_mean_m"] >= TARGETS["aim_m"],
         "falls": kick["falls"] + strong["falls"] + skill_summary["falls"] <= TARGETS["falls"],
     }
-    return {"quick": quick, "seed": seed, "score": kick_challenge["score_m"],
+    return {"robot_type": robot_type, "quick": quick, "seed": seed, "score": kick_challenge["score_m"],
             "score_kind": "magmaChallenge kick challenge (REFERENCE 8.2): mean rest distance from (0, 0) [m], lower "
                           "is better",
             "targets": TARGETS, "passed": passed, "kick": kick, "kick_strong": strong, "skill": skill_summary,
@@ -255,7 +260,8 @@ def run(quick: bool = False, seed: int = 0, progress: Callable[[int, int], None]
 
 
 def plot(result: dict, out_dir: pathlib.Path) -> list[pathlib.Path]:
-    """kick.png: ball rest positions in the aim frame (top view) per kick type, and the distance histogram."""
+    """kick_type<N>.png (N = the result's robot type): ball rest positions in the aim frame (top view) per kick
+    kind, and the distance histogram."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -278,7 +284,7 @@ def plot(result: dict, out_dir: pathlib.Path) -> list[pathlib.Path]:
     ax_top.scatter([0], [0], color="orange", s=60, label="ball start")
     ax_top.set_xlabel("along the aim [m]")
     ax_top.set_ylabel("left of the aim [m]")
-    ax_top.set_title("ball rest positions (top view, aim frame)")
+    ax_top.set_title(f"type {result.get('robot_type', 0)}: ball rest positions (top view, aim frame)")
     ax_top.axis("equal")
     ax_top.legend(fontsize=8)
     bins = np.linspace(0, max(1.0, max(t["distance_m"] for k in KINDS for t in result["trials"][k])) + 0.5, 20)
@@ -293,7 +299,7 @@ def plot(result: dict, out_dir: pathlib.Path) -> list[pathlib.Path]:
     ax_hist.set_title(f"distance (challenge score {result['score']} m)")
     ax_hist.legend(fontsize=8)
     fig.tight_layout()
-    path = out_dir / "kick.png"
+    path = out_dir / f"kick_type{result.get('robot_type', 0)}.png"
     fig.savefig(path, dpi=110)
     plt.close(fig)
     return [path]
@@ -303,17 +309,18 @@ def plot(result: dict, out_dir: pathlib.Path) -> list[pathlib.Path]:
 
 
 def main(argv: list[str] | None = None) -> None:
-    """``python -m motion_studio.skill_bench.kick [--quick] [--seed N] [--out DIR]``: run, write kick.json
-    and kick.png into DIR, print the summary."""
+    """``python -m motion_studio.skill_bench.kick [--quick] [--seed N] [--type N] [--out DIR]``: run, write
+    kick.json and kick_type<N>.png into DIR, print the summary."""
     import argparse
     import json
 
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true")
     parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--type", type=int, default=0, choices=range(5), dest="robot_type")
     parser.add_argument("--out", type=pathlib.Path, default=pathlib.Path("/tmp/nao3d-bench/kick"))
     args = parser.parse_args(argv)
-    result = run(args.quick, args.seed, lambda done, total: print(f"{done}/{total}", flush=True))
+    result = run(args.quick, args.seed, lambda done, total: print(f"{done}/{total}", flush=True), args.robot_type)
     args.out.mkdir(parents=True, exist_ok=True)
     (args.out / "kick.json").write_text(json.dumps(result, indent=1))
     for path in plot(result, args.out):

@@ -113,7 +113,8 @@ def _clock(scenario: Scenario, trial: Trial) -> Trial:
 
     for cycle in range(limit + hold):
         truth = scenario.run(1)[0]
-        if cycle % 2 == 0 and colliding_pairs(0, scenario.engine.robot_body_poses()[0][3], SELF_COLLISION_M):
+        if cycle % 2 == 0 and colliding_pairs(scenario.robot_type, scenario.engine.robot_body_poses()[0][3],
+                                              SELF_COLLISION_M):
             trial.self_collisions += 1
         if cycle % TRACE_EVERY == 0 and cycle <= limit:
             trial.torso_z_m.append(round(truth.torso_m[2], 3))
@@ -144,35 +145,38 @@ def prepose(stand: Motion, rng: random.Random, name: str = "prepose") -> Motion:
     return Motion(name, [keyframe], source_format=stand.source_format, first_phase="prepose")
 
 
-def _stood_scenario(seed: int, rng: random.Random | None = None, library: MotionLibrary | None = None) -> Scenario:
-    """A fresh robot in the walk stance, or in a seeded pose near it when ``rng`` is given."""
-    library = library or default_library(0)
+def _stood_scenario(seed: int, rng: random.Random | None = None, library: MotionLibrary | None = None,
+                    robot_type: int = 0) -> Scenario:
+    """A fresh robot of ``robot_type`` in the walk stance, or in a seeded pose near it when ``rng`` is given,
+    playing ``library`` (default: that type's shipped motions, its own stand-ups where it has them)."""
+    library = library or default_library(robot_type)
     skill = PlayMotion("stand")
     if rng is not None:
         library.add(prepose(library.get("stand"), rng))
         skill = PlayMotion("prepose")
-    scenario = Scenario(skill, seed=seed, controller=MotionController(library, load_dynamic_params(), 0))
+    scenario = Scenario(skill, robot_type=robot_type, seed=seed,
+                        controller=MotionController(library, load_dynamic_params(), robot_type))
     scenario.run(STANCE_CYCLES)
     scenario.set_skill(None)  # after its recovery the robot holds its stance (not the pre-fall pose again)
     return scenario
 
 
-def lying_trial(side: str, rng: random.Random, seed: int) -> Trial:
+def lying_trial(side: str, rng: random.Random, seed: int, robot_type: int = 0) -> Trial:
     """Lay the standing robot on ``side`` at a random yaw, nudge it, and clock its recovery."""
     yaw = rng.uniform(-180.0, 180.0)
     twist = rng.uniform(-TWIST_DEG, TWIST_DEG)
     push = random_vector(rng, PUSH_M_S, horizontal=True)
     spin = random_vector(rng, SPIN_RAD_S)
     trial = Trial(side, round(yaw, 1), push, spin)
-    scenario = _stood_scenario(seed, rng)
+    scenario = _stood_scenario(seed, rng, robot_type=robot_type)
     scenario.lay_down(side, yaw, twist)
     scenario.push(push, spin)
     return _clock(scenario, trial)
 
 
-def pushed_trial(walking: bool, rng: random.Random, seed: int) -> Trial:
+def pushed_trial(walking: bool, rng: random.Random, seed: int, robot_type: int = 0) -> Trial:
     """Knock a standing (or walking) robot over with a random push; clock from the fall."""
-    scenario = _stood_scenario(seed)
+    scenario = _stood_scenario(seed, robot_type=robot_type)
     if walking:
         scenario.set_skill(PlayMotion("walk_forward", repeat=True))
         scenario.run(WALK_CYCLES)
@@ -228,8 +232,10 @@ def summarise(trials: list[Trial]) -> dict:
     }
 
 
-def run(quick: bool = False, seed: int = 0, progress: Callable[[int, int], None] | None = None) -> dict:
-    """Run the stand-up trials; returns JSON-ready figures (see the module docstring)."""
+def run(quick: bool = False, seed: int = 0, progress: Callable[[int, int], None] | None = None,
+        robot_type: int = 0) -> dict:
+    """Run the stand-up trials of a robot of ``robot_type`` (0-4) with its shipped motions; returns JSON-ready
+    figures with ``robot_type`` (see the module docstring)."""
     n_side = TRIALS_QUICK if quick else TRIALS
     n_pushed = PUSHED_TRIALS_QUICK if quick else PUSHED_TRIALS
     plan: list[tuple[str, int]] = [(side, i) for side in SIDES for i in range(n_side)]
@@ -239,9 +245,9 @@ def run(quick: bool = False, seed: int = 0, progress: Callable[[int, int], None]
         rng = random.Random(f"standup/{seed}/{kind}/{i}")
         trial_seed = seed * 1000 + len(trials)
         if kind == "pushed":
-            trials.append(pushed_trial(i % 2 == 1, rng, trial_seed))
+            trials.append(pushed_trial(i % 2 == 1, rng, trial_seed, robot_type))
         else:
-            trials.append(lying_trial(kind, rng, trial_seed))
+            trials.append(lying_trial(kind, rng, trial_seed, robot_type))
         if progress is not None:
             progress(done + 1, len(plan))
     per_side = {side: summarise([t for t in trials if t.kind == side]) for side in SIDES}
@@ -249,6 +255,7 @@ def run(quick: bool = False, seed: int = 0, progress: Callable[[int, int], None]
     pushed = [t for t in trials if t.kind.startswith("pushed")]
     overall = summarise(lying)
     result = {
+        "robot_type": robot_type,
         "score": overall["success_rate"],
         "lying": overall,
         **per_side,
@@ -273,7 +280,8 @@ def _trial_record(trial: Trial) -> dict:
 
 
 def plot(result: dict, out_dir: pathlib.Path) -> list[pathlib.Path]:
-    """Time-to-stand histogram per side, and torso height over time of a few trials per side."""
+    """``standup_type<N>.png`` (N = the result's robot type): time-to-stand histogram per side, and torso height
+    over time of a few trials per side."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -294,7 +302,7 @@ def plot(result: dict, out_dir: pathlib.Path) -> list[pathlib.Path]:
     hist.set_ylabel("trials")
     rates = ", ".join(f"{kind} {result[kind]['success_rate']:.0%}" for kind in kinds
                       if result.get(kind, {}).get("success_rate") is not None)
-    hist.set_title(f"Time to stand (within {TARGET_S:g} s: {rates})")
+    hist.set_title(f"Type {result.get('robot_type', 0)}: time to stand (within {TARGET_S:g} s: {rates})")
     hist.legend()
     colours = {"back": "tab:blue", "front": "tab:orange", "pushed": "tab:green"}
     for kind in kinds:
@@ -309,7 +317,7 @@ def plot(result: dict, out_dir: pathlib.Path) -> list[pathlib.Path]:
     trace.set_title("Torso height (a few trials)")
     trace.legend()
     fig.tight_layout()
-    path = out_dir / "standup.png"
+    path = out_dir / f"standup_type{result.get('robot_type', 0)}.png"
     fig.savefig(path, dpi=110)
     plt.close(fig)
     return [path]

@@ -67,19 +67,20 @@ def _unwrapped_turn_deg(history: list[Truth]) -> float:
     return total
 
 
-@lru_cache(maxsize=4)
-def _library(motions_dir: pathlib.Path | None) -> MotionLibrary:
-    """The motion library, read once per folder (controllers only read it)."""
-    return default_library(0, motions_dir)
+@lru_cache(maxsize=8)
+def _library(robot_type: int, motions_dir: pathlib.Path | None) -> MotionLibrary:
+    """The motion library of a robot type, read once per type and folder (controllers only read it)."""
+    return default_library(robot_type, motions_dir)
 
 
 def new_scenario(seed: int = 0, dynamic: DynamicParams | None = None, motions_dir: pathlib.Path | None = None,
-                 side: str = "left") -> tuple[Scenario, MotionController]:
-    """A robot at (-5, 0) facing +x that has stepped once in place into the walk stance (turn gain base),
-    without fall recovery (a fall ends a trial)."""
-    controller = MotionController(_library(motions_dir), dynamic or load_dynamic_params(), 0)
+                 side: str = "left", robot_type: int = 0) -> tuple[Scenario, MotionController]:
+    """A robot of ``robot_type`` at (-5, 0) facing +x that has stepped once in place into the walk stance (turn
+    gain base), playing that type's motions, without fall recovery (a fall ends a trial)."""
+    controller = MotionController(_library(robot_type, motions_dir), dynamic or load_dynamic_params(), robot_type)
     base = controller.library.gain_bases[TURN_MOTIONS[side]]
-    scenario = Scenario(PlayMotion(base), controller=controller, recover_falls=False, seed=seed)
+    scenario = Scenario(PlayMotion(base), controller=controller, recover_falls=False, seed=seed,
+                        robot_type=robot_type)
     scenario.run(int(3.0 / 0.02), stop=lambda truth: controller.completed[base] > 0)
     scenario.set_skill(None)
     scenario.run(SETTLE_CYCLES)
@@ -107,9 +108,9 @@ def _run_skill(scenario: Scenario, skill: Skill, done: Callable[[], bool], settl
 
 
 def run_motions(side: str, gain: float, motions: int, seed: int = 0, dynamic: DynamicParams | None = None,
-                motions_dir: pathlib.Path | None = None) -> TurnRun:
+                motions_dir: pathlib.Path | None = None, robot_type: int = 0) -> TurnRun:
     """Play the turn motion of ``side`` back to back ``motions`` times at ``gain``; truth of the whole run."""
-    scenario, controller = new_scenario(seed, dynamic, motions_dir, side)
+    scenario, controller = new_scenario(seed, dynamic, motions_dir, side, robot_type)
     name = TURN_MOTIONS[side]
     before = controller.completed[name]
     run = _run_skill(scenario, PlayMotion(name, repeat=True, gain=gain),
@@ -119,9 +120,10 @@ def run_motions(side: str, gain: float, motions: int, seed: int = 0, dynamic: Dy
 
 
 def run_turn_by(angle_deg: float, seed: int = 0, dynamic: DynamicParams | None = None,
-                motions_dir: pathlib.Path | None = None) -> tuple[TurnRun, float]:
+                motions_dir: pathlib.Path | None = None, robot_type: int = 0) -> tuple[TurnRun, float]:
     """TurnBy(angle) by dead reckoning; returns the truth of the run (after settling) and the predicted turn."""
-    scenario, controller = new_scenario(seed, dynamic, motions_dir, "left" if angle_deg > 0 else "right")
+    scenario, controller = new_scenario(seed, dynamic, motions_dir, "left" if angle_deg > 0 else "right",
+                                        robot_type)
     skill = TurnBy(angle_deg, tolerance_deg=0.5, use_localization=False)
     run = _run_skill(scenario, skill, lambda: skill.done, settle_cycles=SETTLE_CYCLES)
     run.motions = skill.motions_played
@@ -129,14 +131,14 @@ def run_turn_by(angle_deg: float, seed: int = 0, dynamic: DynamicParams | None =
 
 
 def gain_sweep(gains: tuple[float, ...], motions: int, seed: int = 0, dynamic: DynamicParams | None = None,
-               motions_dir: pathlib.Path | None = None,
-               progress: Callable[[], None] | None = None) -> list[dict[str, float | bool]]:
+               motions_dir: pathlib.Path | None = None, progress: Callable[[], None] | None = None,
+               robot_type: int = 0) -> list[dict[str, float | bool]]:
     """Turn per motion [deg] at each gain, left and right (right reported as a positive turn)."""
     rows = []
     for gain in gains:
         row: dict[str, float | bool] = {"gain": gain}
         for side, sign in (("left", 1.0), ("right", -1.0)):
-            run = run_motions(side, gain, motions, seed, dynamic, motions_dir)
+            run = run_motions(side, gain, motions, seed, dynamic, motions_dir, robot_type)
             row[f"{side}_deg"] = round(sign * run.turn_deg / max(run.motions, 1), 2)
             row[f"{side}_fell"] = run.fell
             if progress:
@@ -145,8 +147,10 @@ def gain_sweep(gains: tuple[float, ...], motions: int, seed: int = 0, dynamic: D
     return rows
 
 
-def run(quick: bool = False, seed: int = 0, progress: Callable[[int, int], None] | None = None) -> dict:
-    """The turn figures (see the module docstring); JSON-ready."""
+def run(quick: bool = False, seed: int = 0, progress: Callable[[int, int], None] | None = None,
+        robot_type: int = 0) -> dict:
+    """The turn figures of a robot of ``robot_type`` (0-4) with its shipped motions (see the module
+    docstring); JSON-ready, with ``robot_type``."""
     dynamic = load_dynamic_params()
     curve = dynamic.turn_gain
     requested = REQUESTED_QUICK_DEG if quick else REQUESTED_DEG
@@ -164,19 +168,20 @@ def run(quick: bool = False, seed: int = 0, progress: Callable[[int, int], None]
     falls = 0
     rates: dict[str, dict[str, float]] = {}
     for side, sign in (("left", 1.0), ("right", -1.0)):
-        trial = run_motions(side, 1.0, rate_motions, seed, dynamic)
+        trial = run_motions(side, 1.0, rate_motions, seed, dynamic, robot_type=robot_type)
         falls += trial.fell
         rates[side] = {"rate_deg_s": round(sign * trial.turn_deg / trial.duration_s, 1),
                        "turn_per_motion_deg": round(sign * trial.turn_deg / max(trial.motions, 1), 2),
                        "drift_per_motion_m": round(trial.drift_m / max(trial.motions, 1), 4),
                        "motions": trial.motions, "fell": trial.fell}
         tick()
-    sweep = gain_sweep(gains, SWEEP_MOTIONS_QUICK if quick else SWEEP_MOTIONS, seed, dynamic, progress=tick)
+    sweep = gain_sweep(gains, SWEEP_MOTIONS_QUICK if quick else SWEEP_MOTIONS, seed, dynamic, progress=tick,
+                       robot_type=robot_type)
     falls += sum(bool(row["left_fell"]) + bool(row["right_fell"]) for row in sweep)
     trials = []
     for angle in requested:
         for sign in (1.0, -1.0):
-            trial, predicted = run_turn_by(sign * angle, seed, dynamic)
+            trial, predicted = run_turn_by(sign * angle, seed, dynamic, robot_type=robot_type)
             falls += trial.fell
             trials.append({"requested_deg": sign * angle, "predicted_deg": round(predicted, 2),
                            "measured_deg": round(trial.turn_deg, 2), "motions": trial.motions,
@@ -192,6 +197,7 @@ def run(quick: bool = False, seed: int = 0, progress: Callable[[int, int], None]
                   "request_max_abs_deg": round(max(map(abs, request_errors)), 2)}
     slowest = min(rates["left"]["rate_deg_s"], rates["right"]["rate_deg_s"])
     return {
+        "robot_type": robot_type,
         "score": round(mean_rate, 1),
         "score_note": "no league turn challenge: score = mean turn rate [deg/s]",
         "rate_left_deg_s": rates["left"]["rate_deg_s"], "rate_right_deg_s": rates["right"]["rate_deg_s"],
@@ -210,7 +216,8 @@ def run(quick: bool = False, seed: int = 0, progress: Callable[[int, int], None]
 
 
 def plot(result: dict, out_dir: pathlib.Path) -> list[pathlib.Path]:
-    """turn.png: measured vs predicted turn over the requests, turn per motion vs gain, and the rates."""
+    """turn_type<N>.png (N = the result's robot type): measured vs predicted turn over the requests, turn per
+    motion vs gain, and the rates."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -250,9 +257,10 @@ def plot(result: dict, out_dir: pathlib.Path) -> list[pathlib.Path]:
                          (result["targets"]["turn_rate_aim_deg_s"], "aim")):
         ax_rate.axhline(level, color="0.4", ls=":", lw=1)
         ax_rate.text(1.45, level, label, va="bottom", ha="right", fontsize=8)
-    ax_rate.set(ylabel="turn rate at gain 1 [deg/s]", title=f"turn rate (falls: {result['falls']})")
+    ax_rate.set(ylabel="turn rate at gain 1 [deg/s]",
+                title=f"type {result.get('robot_type', 0)} turn rate (falls: {result['falls']})")
     fig.tight_layout()
-    path = out_dir / "turn.png"
+    path = out_dir / f"turn_type{result.get('robot_type', 0)}.png"
     fig.savefig(path, dpi=110)
     plt.close(fig)
     return [path]

@@ -94,15 +94,16 @@ def lean_trial(run: WalkRun) -> dict:
 
 
 def walk_to_trial(start: tuple[float, float, float], target: tuple[float, float], seed: int,
-                  library: MotionLibrary | None = None) -> dict:
-    """WalkTo from ``start`` (x, y, heading deg) to ``target`` (field frame = the left team's frame)."""
+                  library: MotionLibrary | None = None, robot_type: int = 0) -> dict:
+    """WalkTo from ``start`` (x, y, heading deg) to ``target`` (field frame = the left team's frame) by a robot
+    of ``robot_type`` (with ``library``, else the shipped motions of that type)."""
     skill = WalkTo(*target)
     controller = None
     if library is not None:
         from motion_studio.walk_rollout import make_controller
-        controller = make_controller(library)
-    scenario = Scenario(skill, position_m=start[:2], heading_deg=start[2], seed=seed, controller=controller,
-                        recover_falls=False, ball_m=BALL_AWAY_M)
+        controller = make_controller(library, robot_type=robot_type)
+    scenario = Scenario(skill, position_m=start[:2], heading_deg=start[2], robot_type=robot_type, seed=seed,
+                        controller=controller, recover_falls=False, ball_m=BALL_AWAY_M)
     truths: list[Truth] = scenario.run(int(WALK_TO_LIMIT_S / CYCLE_S), stop=lambda t: skill.done or t.fallen)
     end = truths[-1]
     return {"start": list(start), "target": list(target), "done": skill.done, "reached": skill.reached,
@@ -118,9 +119,11 @@ def _trace(run: WalkRun) -> dict:
 
 
 def run(quick: bool = False, seed: int = 0, progress: Callable[[int, int], None] | None = None,
-        library: MotionLibrary | None = None) -> dict:
-    """All walk trials; JSON-ready figures with ``score`` (the run challenge's), ``targets`` and ``passed``."""
-    library = library or default_library(0)
+        library: MotionLibrary | None = None, robot_type: int = 0) -> dict:
+    """All walk trials of a robot of ``robot_type`` (0-4) playing ``library`` (default: that type's shipped
+    motions); JSON-ready figures with ``robot_type``, ``score`` (the run challenge's), ``targets`` and
+    ``passed``."""
+    library = library or default_library(robot_type)
     walk_to = WALK_TO[:1] if quick else WALK_TO
     total = 2 + len(SIDE_WALKS) + 2 + len(walk_to)
     done = 0
@@ -133,24 +136,27 @@ def run(quick: bool = False, seed: int = 0, progress: Callable[[int, int], None]
 
     forward_s = 8.0 if quick else 45.0
     challenge = run_walk(library, "walk_forward", RUN_WAIT_S + RUN_TIME_S if not quick else 8.0, position_m=RUN_START_M,
-                         x_limit_m=RUN_END_X_M, seed=seed)
+                         x_limit_m=RUN_END_X_M, seed=seed, robot_type=robot_type)
     tick()
     long_run = challenge if quick else run_walk(library, "walk_forward", forward_s, position_m=RUN_START_M,
-                                                x_limit_m=RUN_START_M[0] + 20.5, seed=seed)
+                                                x_limit_m=RUN_START_M[0] + 20.5, seed=seed,
+                                                robot_type=robot_type)
     tick()
     sides = {}
     for name in SIDE_WALKS:
         sides[name] = side_walk(run_walk(library, name, SIDE_TIME_QUICK_S if quick else SIDE_TIME_S,
-                                         position_m=(0.0, 0.0), x_limit_m=None, seed=seed))
+                                         position_m=(0.0, 0.0), x_limit_m=None, seed=seed,
+                                         robot_type=robot_type))
         tick()
     leans = {}
     for label, lean in (("left", 1.0), ("right", -1.0)):
         leans[label] = lean_trial(run_walk(library, "walk_forward", LEAN_TIME_QUICK_S if quick else LEAN_TIME_S,
-                                           position_m=(-8.0, 0.0), lean=lean, x_limit_m=None, seed=seed))
+                                           position_m=(-8.0, 0.0), lean=lean, x_limit_m=None, seed=seed,
+                                           robot_type=robot_type))
         tick()
     walk_to_results = []
     for start, target in walk_to:
-        walk_to_results.append(walk_to_trial(start, target, seed, library))
+        walk_to_results.append(walk_to_trial(start, target, seed, library, robot_type))
         tick()
     challenge_figures = run_challenge(challenge)
     twenty = twenty_metres(long_run)
@@ -164,6 +170,7 @@ def run(quick: bool = False, seed: int = 0, progress: Callable[[int, int], None]
         "walk_to": all(r["error_m"] <= TARGETS["walk_to_error_m"] for r in walk_to_results),
     }
     return {
+        "robot_type": robot_type,
         "score": challenge_figures["score"],
         "quick": quick, "seed": seed,
         "run_challenge": challenge_figures,
@@ -180,7 +187,8 @@ def run(quick: bool = False, seed: int = 0, progress: Callable[[int, int], None]
 
 
 def plot(result: dict, out_dir: pathlib.Path) -> list[pathlib.Path]:
-    """``walk.png``: the run challenge's x over time, speed (1 s window) and torso height."""
+    """``walk_type<N>.png`` (N = the result's robot type): the run challenge's x over time, speed (1 s window)
+    and torso height."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -197,7 +205,8 @@ def plot(result: dict, out_dir: pathlib.Path) -> list[pathlib.Path]:
     axes[0].plot(t, x)
     axes[0].set_ylabel("torso x [m]")
     challenge = result["run_challenge"]
-    axes[0].set_title(f"run challenge: score {challenge['score']}, speed {challenge['speed_m_s']} m/s, "
+    axes[0].set_title(f"type {result.get('robot_type', 0)} run challenge: score {challenge['score']}, "
+                      f"speed {challenge['speed_m_s']} m/s, "
                       f"20 m: {result['forward_20m']['speed_m_s']} m/s, falls {result['falls']}")
     axes[1].plot(speed_t, speed)
     axes[1].axhline(TARGETS["speed_floor_m_s"], color="tab:red", linestyle="--", label="floor 0.45 m/s")
@@ -213,7 +222,7 @@ def plot(result: dict, out_dir: pathlib.Path) -> list[pathlib.Path]:
         axis.axvline(trace["walk_end_s"], color="grey", linestyle=":")
         axis.grid(alpha=0.3)
     fig.tight_layout()
-    path = out_dir / "walk.png"
+    path = out_dir / f"walk_type{result.get('robot_type', 0)}.png"
     fig.savefig(path, dpi=100)
     plt.close(fig)
     return [path]
