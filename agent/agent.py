@@ -26,6 +26,11 @@ Behavior = Callable[[WorldModel], list[Action]]
 #: The ball counts as known for team messages if seen within this time [s].
 BALL_FRESH_S = 1.0
 HETERO_RSG = "rsg/agent/nao/nao_hetero.rsg"
+#: After a goal the agent beams to its kick-off spot only this many cycles into the Goal_* mode (it lasts 3 s):
+#: the behaviour has stopped the walk into the stance by then. Beamed in the goal's first cycle, players in
+#: mid-stride were set down on one foot and fell, on both servers (3 v 3: most of our falls against robots
+#: that only stand came at the beam after a goal).
+GOAL_BEAM_DELAY_CYCLES = 50
 
 
 @dataclass(frozen=True)
@@ -113,6 +118,8 @@ class Agent:
         game = self.world.game
         if not game.beam_allowed or game.unum is None or game.side is None:
             return []
+        if game.play_mode.startswith("Goal_") and game.play_mode_cycles < GOAL_BEAM_DELAY_CYCLES:
+            return []  # the stance first (see GOAL_BEAM_DELAY_CYCLES)
         spot = beam_spot(game.unum, self.config.formation)
         if game.play_mode.lower() == f"goal_{game.side}":
             # We scored: the opponents kick off next, so no spot inside the centre circle or on its line.

@@ -9,6 +9,7 @@ import sys
 import pytest
 
 from agent import Agent, AgentConfig
+from agent.agent import GOAL_BEAM_DELAY_CYCLES
 from agent.communication import decode
 from agent.errors import ConfigError
 from agent.formation import FORMATIONS, beam_spot
@@ -49,13 +50,18 @@ def _sense(now, mode, unum=None, side=None):
 
 def test_beam_again_after_a_goal_never_in_play_on():
     agent = Agent(AgentConfig("Mine", 7))
-    modes = ["BeforeKickOff"] * 5 + ["KickOff_Left"] * 3 + ["PlayOn"] * 5 + ["Goal_Left"] * 5 + ["PlayOn"] * 3
+    goal = GOAL_BEAM_DELAY_CYCLES + 5
+    modes = ["BeforeKickOff"] * 5 + ["KickOff_Left"] * 3 + ["PlayOn"] * 5 + ["Goal_Left"] * goal + ["PlayOn"] * 3
     beams = []
     for i, mode in enumerate(modes):
         actions = parse_actions(agent.step(_sense(1.0 + 0.02 * i, mode, 7 if i == 1 else None,
                                                   "left" if i == 1 else None)))
-        beams += [(mode, a) for a in actions if isinstance(a, Beam)]
+        beams += [(mode, i) for a in actions if isinstance(a, Beam)]
     assert [mode for mode, _ in beams] == ["BeforeKickOff", "Goal_Left"]
+    # after a goal the beam waits for the stance: a robot beamed in mid-stride fell
+    first_goal_cycle = 5 + 3 + 5
+    assert beams[1][1] == first_goal_cycle + GOAL_BEAM_DELAY_CYCLES
+    assert 40 <= GOAL_BEAM_DELAY_CYCLES <= 100  # 0.8-2 s: the walk has stopped, the 3 s goal not yet over
 
 
 @pytest.mark.parametrize(("goal", "inside_allowed"), [("Goal_Left", False), ("Goal_Right", True)])
@@ -63,7 +69,7 @@ def test_after_a_goal_the_kick_off_spots_beam_outside_the_circle_when_the_oppone
     """Unum 2's kick-off spot (-0.5, 0) lies in the centre circle: after our goal (the opponents kick off) the
     agent beams outside it (2.5 m from the centre, off the kick-off line); after theirs, to the spot itself."""
     agent = Agent(AgentConfig("Mine", 2))
-    modes = ["BeforeKickOff"] * 3 + ["PlayOn"] * 3 + [goal] * 3
+    modes = ["BeforeKickOff"] * 3 + ["PlayOn"] * 3 + [goal] * (GOAL_BEAM_DELAY_CYCLES + 3)
     beams = []
     for i, mode in enumerate(modes):
         actions = parse_actions(agent.step(_sense(1.0 + 0.02 * i, mode, 2 if i == 1 else None,
