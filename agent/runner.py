@@ -106,10 +106,13 @@ def status_line(agent: Agent) -> str:
         f"pose ({pose.x_m:.2f}, {pose.y_m:.2f}, {math.degrees(pose.heading_rad):.0f} deg)"
     ball = world.ball
     ball_text = "ball unseen" if ball is None or ball.x_m is None else f"ball ({ball.x_m:.2f}, {ball.y_m:.2f})"
-    heard = {unum: (round(t.x_m, 1), round(t.y_m, 1)) for unum, t in sorted(world.teammates.items())
-             if t.forward_m is None and t.x_m is not None}
+    seen = {unum: (round(t.x_m, 1), round(t.y_m, 1)) for unum, t in sorted(world.teammates.items())
+            if t.source == "vision" and t.x_m is not None}
+    # the age of each teammate's last message, whether or not it is also seen: a teammate seen nearby but
+    # unheard for seconds (its say turns lost) once read as "not heard" in this line
+    heard = {unum: f"{world.now_s - r.heard_s:.1f} s ago" for unum, r in sorted(world.reports.items())}
     return (f"t={world.now_s:.2f} {world.game.play_mode} #{world.unum} {where}, {ball_text}, "
-            f"teammates heard {heard}, last said {agent.said[-1] if agent.said else '-'}")
+            f"teammates seen {seen}, last heard {heard}, last said {agent.said[-1] if agent.said else '-'}")
 
 
 def serve(sock: socket.socket, agent: Agent, stats: RunStats, stop: threading.Event | None = None,

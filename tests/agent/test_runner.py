@@ -154,3 +154,22 @@ def test_motion_studio_agent_subcommand_exits_2_without_a_server():
     _register_commands()
     result = CliRunner().invoke(app, ["agent", "--port", str(_closed_port()), "--attempts", "1", "--team", "Mine"])
     assert result.exit_code == 2
+
+
+def test_the_status_line_says_how_long_ago_each_teammate_was_heard():
+    """Teammates seen and teammates heard are told apart: the line once listed only teammates whose last
+    news was a message, so a teammate also seen looked unheard."""
+    from agent import Agent
+    from agent.communication import TeamMessage, encode
+    from agent.protocol import Hear, parse_sense
+    from agent.runner import status_line
+    from tests.agent import synthetic_world as synth
+
+    agent = Agent(AgentConfig("Mine", 2))
+    said = encode(TeamMessage("l", 3, position=(1.0, 2.0)), "Mine")
+    agent.world.update(parse_sense(synth.sense_bytes(10.0, unum=2, side="left", play_mode="PlayOn",
+                                                     hears=(Hear("Mine", 1.0, 30.0, said),))))
+    agent.world.update(parse_sense(synth.sense_bytes(10.5, play_mode="PlayOn")))
+    line = status_line(agent)
+    assert "last heard {3: '0.5 s ago'}" in line, line
+    assert "teammates seen {}" in line, line
