@@ -241,11 +241,11 @@ class MotorBank:
         self._any_stop = False
 
     def predict(self, model: mujoco.MjModel, data: mujoco.MjData,
-                step_start: tuple[np.ndarray, np.ndarray, np.ndarray, float] | None = None) -> None:
+                step_start: tuple[np.ndarray, np.ndarray, np.ndarray, float]) -> None:
         """Choose each motor's servo gain for the coming step and write damping and forces.
 
         ``step_start`` is the caller's copy of the state the step starts from (qpos, qvel, qacc_warmstart,
-        time), kept for a solve from the step's start (see `check`); None: predict copies it itself.
+        time), kept for a solve from the step's start (see `check`).
 
         Per joint, with I the joint-space inertia (diagonal of M: the rest of the robot held, as its motors
         hold it), e = u - q̇ and L the load the motor met in the last step (its torque minus I times the
@@ -278,8 +278,6 @@ class MotorBank:
         self._reset = self._no_reset
         self._pinned = self._no_reset
         # The step's start, for a solve of its own when the last one ran away (see `check`).
-        if step_start is None:
-            step_start = (data.qpos.copy(), data.qvel.copy(), data.qacc_warmstart.copy(), data.time)
         self._step_start = step_start
         needed = load + inertia * error / h
         was_capped = None   # the usual step: every servo was stiff (`_stiff` is only ever all kv), none capped
