@@ -1,4 +1,4 @@
-"""``motion-studio bench skills``: the skill benchmarks (walk, turn, kick, stand-up) on our simulator.
+"""``motion-studio bench skills``: the skill benchmarks (walk, turn, kick, stand-up, dribble) on our simulator.
 
 Each skill's benchmark lives in ``motion_studio.skill_bench.<skill>`` with
 ``run(quick, seed, progress, robot_type=...)`` returning JSON-ready figures (with their ``robot_type``) and
@@ -23,7 +23,7 @@ from kinematics.spec import ROBOT_TYPES
 from motion_studio.cli import bench_app
 
 #: Benchmarked skills in the order they run (the module name under motion_studio.skill_bench).
-SKILLS = ("walk", "turn", "kick", "standup")
+SKILLS = ("walk", "turn", "kick", "standup", "dribble")
 
 
 def _flatten(prefix: str, value: Any, rows: list[tuple[str, str]]) -> None:
@@ -118,8 +118,8 @@ def bench_skills(
              "--type 1,4); default 0. With several, the figures are keyed by type")] = None,
 ) -> None:
     """Walk speed and falls (run challenge), turn rate and turn-gain error, kick distance and direction,
-    stand-up success and time, on our simulator with the real agent, per robot type with that type's
-    motions. Writes PNG plots."""
+    stand-up success and time, dribble speed and ball control, on our simulator with the real agent, per
+    robot type with that type's motions. Writes PNG plots."""
     robot_types = parse_robot_types(robot_type)
     chosen = skill or list(SKILLS)
     unknown = [name for name in chosen if name not in SKILLS]

@@ -18,11 +18,18 @@ from agent.motion import MotionController, MotionLibrary, MotionRequest, default
 from agent.protocol.effectors import Action, JointVelocity
 from agent.skills.base import PlayMotion, Skill
 from agent.skills.behavior import SkillBehavior
+from agent.skills.dribble import Dribble
 from agent.skills.standup import StandUp
 from agent.skills.turn import TurnBy
 from agent.world_model import WorldModel
 from motion_studio.realserver.git_export import export_motions, short_revision
 from agent.protocol.constants import CYCLE_S
+from motion_studio.skill_bench.dribble import BALL_AHEAD_M, LOOK_DOWN_DEG
+from motion_studio.skill_bench.dribble import LIMIT_S as DRIBBLE_LIMIT_S
+from motion_studio.skill_bench.dribble import STRAIGHT_M as DRIBBLE_STRAIGHT_M
+from motion_studio.skill_bench.dribble import STRAIGHT_TARGET_M as DRIBBLE_STRAIGHT_TARGET_M
+from motion_studio.skill_bench.dribble import TURN_M as DRIBBLE_TURN_M
+from motion_studio.skill_bench.dribble import TURN_TARGET_M as DRIBBLE_TURN_TARGET_M
 
 #: Cycles before the move (scene, init, the agent's own beam), as motion_studio.scenarios.CONNECT_CYCLES.
 CONNECT_CYCLES = 6
@@ -90,6 +97,9 @@ class Case:
     """Factor on every joint velocity of the fall script."""
     fall_stop_shift_cycles: int = 0
     """Cycles added to the fall script's stop step (its last step)."""
+    dribble: tuple[float, float] | None = None
+    """For a dribble: (direction from the ball's start to the target [deg], the ball's way measured along it [m])
+    (``motion_studio.skill_bench.dribble.measure``, from the skill's start after STAND_CYCLES)."""
 
     @property
     def skill_cycle(self) -> int:
@@ -118,6 +128,8 @@ CASES: dict[str, Case] = {
 #: Torso moved forward by the stand motion from the zero pose [m] (measured: real 0.032, ours 0.033).
 STAND_SHIFT_M = 0.032
 STAND_CYCLES = 60
+#: Cycles of the dribble_push case after the stand (8 s: the first touches and the ball's roll).
+DRIBBLE_PUSH_CYCLES = 400
 
 
 def _kick(name: str) -> Case:
@@ -127,6 +139,28 @@ def _kick(name: str) -> Case:
 
 for _name in ("kick", "kick_left", "kick_strong", "kick_strong_left"):
     CASES[_name] = _kick(_name)
+
+
+def _dribble(name: str, position_m: tuple[float, float], direction_deg: float, way_m: float,
+             target_m: float) -> Case:
+    """The benchmark's dribble (``motion_studio.skill_bench.dribble``): the robot facing +x in the walk stance,
+    the ball BALL_AHEAD_M in front of its torso, the target ``target_m`` from the ball along ``direction_deg``."""
+    ball = (position_m[0] + BALL_AHEAD_M, position_m[1])
+    direction = math.radians(direction_deg)
+    target = (ball[0] + target_m * math.cos(direction), ball[1] + target_m * math.sin(direction))
+    cycles = STAND_CYCLES + int(DRIBBLE_LIMIT_S / CYCLE_S)
+    return Case(name, lambda: SkillSequence((PlayMotion("stand", repeat=True, head_deg=LOOK_DOWN_DEG), STAND_CYCLES),
+                                            (Dribble(*target), None)), cycles,
+                position_m=position_m, ball_m=ball, dribble=(direction_deg, way_m))
+
+
+CASES["dribble"] = _dribble("dribble", (-8.0, 0.0), 0.0, DRIBBLE_STRAIGHT_M, DRIBBLE_STRAIGHT_TARGET_M)
+#: The dribble's first touches only (8 s): recorded with ``--replay-sim`` (our agent's commands on both servers) it
+#: compares how far a walking foot pushes the ball, physics alone (``motion-studio calibrate``).
+CASES["dribble_push"] = replace(CASES["dribble"], name="dribble_push", cycles=STAND_CYCLES + DRIBBLE_PUSH_CYCLES)
+CASES["dribble_turn_left"] = _dribble("dribble_turn_left", (-6.0, -4.0), 90.0, DRIBBLE_TURN_M, DRIBBLE_TURN_TARGET_M)
+CASES["dribble_turn_right"] = _dribble("dribble_turn_right", (-6.0, 4.0), -90.0, DRIBBLE_TURN_M,
+                                       DRIBBLE_TURN_TARGET_M)
 for _case in list(CASES.values()):
     if _case.motion is None and _case.name in ("stand", "turn_left", "turn_right", "walk_forward", "walk_backward",
                                                "walk_left", "walk_right"):

@@ -5,7 +5,8 @@ from __future__ import annotations
 
 import math
 
-from motion_studio.realserver.cases import CYCLE_S, Case
+from motion_studio.realserver.cases import CYCLE_S, STAND_CYCLES, Case
+from motion_studio.skill_bench.dribble import KEEP_M, measure
 from motion_studio.realserver.measures import fallen, first_fall, stood_index, wrap_deg
 from motion_studio.realserver.skill_runs import Run
 
@@ -64,6 +65,16 @@ def figures(run: Run, case: Case) -> dict[str, float | str]:
         if case.kick:
             dx, dy = truths[-1].ball_m[0] - first.ball_m[0], truths[-1].ball_m[1] - first.ball_m[1]
             out["ball direction [deg]"] = wrap_deg(math.degrees(math.atan2(dy, dx)) - first.heading_deg)
+    if case.dribble is not None and case.ball_m is not None:
+        direction_deg, way_m = case.dribble
+        dribble = measure(run.truths[STAND_CYCLES:], case.ball_m, direction_deg, way_m)
+        out["dribble ball way [m]"] = way_m
+        out["dribble time [s]"] = math.nan if dribble["time_s"] is None else dribble["time_s"]
+        out["dribble speed [m/s]"] = math.nan if dribble["speed_m_s"] is None else dribble["speed_m_s"]
+        out[f"ball within {KEEP_M} m [share]"] = dribble["keep_share"]
+        out["ball from torso p95 [m]"] = dribble["distance_p95_m"] if dribble["distance_p95_m"] is not None else math.nan
+        out["ball from torso max [m]"] = dribble["distance_max_m"] if dribble["distance_max_m"] is not None else math.nan
+        out["dribble fell"] = "yes" if dribble["fell"] else "no"
     if case.fall:
         # stood up: the torso centre above 0.30 m for 1 s after the fall (measures.stood_index; an upright
         # tilt alone is no stand: a robot sitting upright keeps its torso below 0.30 m)
