@@ -630,7 +630,8 @@ class World:
                 continue
             ball_v = d.qvel[self.ball_dof:self.ball_dof + 3]
             separation = sign * float(np.dot(ball_v - other_velocity, normal))
-            wanted = self.params.ball_restitution * approach
+            restitution = self.params.ball_robot_restitution if robot_rows[i] else self.params.ball_restitution
+            wanted = restitution * approach
             if separation < wanted:
                 ball_v += sign * (wanted - separation) * normal
 

@@ -45,14 +45,16 @@ CONTACT_PARAMETERS: tuple[Parameter, ...] = (
     FitParameter("noslip_iterations", 0, 20),
     FitParameter("surface_layer_m", 0.0, 0.002),
 )
-#: The ball's contact parameters (its contacts with feet and ground take the ball's values).
+#: The ball's contact parameters (its contacts with feet and ground take the ball's values) and the restitution
+#: of its rebound off robots (``sim.world``: MuJoCo's soft contact absorbs part of an impact before the rebound
+#: is added, so SimSpark's 0.8 need not be ours). Not its drag: SimSpark's 0.01 N·s/m is a fact (REFERENCE §2.4).
 BALL_PARAMETERS: tuple[Parameter, ...] = (
-    FitParameter("ball_friction", 0.5, 200.0, log=True),
+    FitParameter("ball_friction", 0.2, 200.0, log=True),
     FitParameter("ball_solref[0]", 0.005, 0.1, log=True),
     FitParameter("ball_solref[1]", 0.3, 3.0, log=True),
     FitParameter("ball_solimp[0]", 0.05, 0.95),
     FitParameter("ball_solimp[1]", 0.05, 0.99),
-    FitParameter("ball_linear_drag_n_s_m", 0.005, 0.02, log=True),
+    FitParameter("ball_robot_restitution", 0.4, 1.0),
 )
 PARAMETER_SETS: dict[str, tuple[Parameter, ...]] = {
     "contact": CONTACT_PARAMETERS, "ball": BALL_PARAMETERS, "all": CONTACT_PARAMETERS + BALL_PARAMETERS}

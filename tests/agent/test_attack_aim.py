@@ -68,7 +68,8 @@ SPOT = (0.1254, 0.0018)  # kick.xml's ball_forward_m, ball_left_m
 
 
 @pytest.mark.parametrize("beyond_m, steps, move", [
-    (0.0, 0, "kick"), (0.05, 0, "kick"), (-0.03, 0, "kick"),       # where real kicks flew 2.8-4.0 m
+    (0.0, 0, "kick"), (0.04, 0, "kick"), (-0.03, 0, "kick"),       # where real kicks flew 2.8-4.3 m
+    (0.05, 0, "step"),                                              # a centimetre from the cliff (real +6 cm: 0.08 m)
     (0.075, 0, "step"), (0.12, 3, "step"), (0.12, 4, "kick"),      # grazes on the real server: step in first
     (0.16, 0, None), (-0.05, 0, None)])                              # outside the window: line up again
 def test_a_set_piece_taker_steps_in_before_kicking_a_ball_in_the_far_part_of_its_window(beyond_m, steps, move):
