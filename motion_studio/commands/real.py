@@ -62,6 +62,8 @@ def skills(
     motions: Annotated[str, typer.Option(
         help="git revision of motions/files and motions/params to play (default HEAD: the committed motions); "
              "'worktree' = the files as they are now")] = "HEAD",
+    robot_type: Annotated[int, typer.Option("--type", min=0, max=4, help="robot type (0-4) that plays every case, "
+                                            "with its own motions")] = 0,
     real_server_dir: ServerDir = None,
 ) -> None:
     """Each skill case on the real server and on ours, measured by ground truth; a table per case."""
@@ -81,7 +83,7 @@ def skills(
         _fail("skills", f"unknown git revision {motions!r} (--motions)")
     typer.echo(f"motions: {source.revision}")
     results = check_skills(cases or list(CASES), source, scripts, out, fixture, replay_sim,
-                           report=lambda text: typer.echo(text))
+                           report=lambda text: typer.echo(text), robot_type=robot_type)
     if json_path is not None:
         json_path.write_text(json.dumps(results, indent=1))
 

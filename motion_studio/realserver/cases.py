@@ -97,6 +97,9 @@ class Case:
     """Factor on every joint velocity of the fall script."""
     fall_stop_shift_cycles: int = 0
     """Cycles added to the fall script's stop step (its last step)."""
+    robot_type: int = 0
+    """The robot type (0-4) that plays the case, with that type's motions (``--type`` of ``motion-studio real
+    skills``)."""
     dribble: tuple[float, float] | None = None
     """For a dribble: (direction from the ball's start to the target [deg], the ball's way measured along it [m])
     (``motion_studio.skill_bench.dribble.measure``, from the skill's start after STAND_CYCLES)."""
@@ -222,15 +225,16 @@ class MotionSource:
     folder: Path | None = None
     revision: str = "worktree"
 
-    def library(self) -> MotionLibrary:
-        return default_library(0, self.folder / "files" if self.folder is not None else None)
+    def library(self, robot_type: int = 0) -> MotionLibrary:
+        """The motions a robot of ``robot_type`` plays (its own folder's files over the shared ones)."""
+        return default_library(robot_type, self.folder / "files" if self.folder is not None else None)
 
-    def controller(self) -> MotionController | None:
+    def controller(self, robot_type: int = 0) -> MotionController | None:
         """A motion controller on these motions (None: SkillBehavior's default, the working tree's)."""
         if self.folder is None:
             return None
-        return MotionController(default_library(0, self.folder / "files"),
-                                load_dynamic_params(self.folder / "params" / "dynamic_elements.toml"), 0)
+        return MotionController(default_library(robot_type, self.folder / "files"),
+                                load_dynamic_params(self.folder / "params" / "dynamic_elements.toml"), robot_type)
 
 
 def motion_source(revision: str, scratch: Path) -> MotionSource:
@@ -247,14 +251,14 @@ def motion_source(revision: str, scratch: Path) -> MotionSource:
 
 def behavior(case: Case, motions: MotionSource) -> tuple[SkillBehavior, FallThenSkill]:
     """The agent's behaviour for a case: the skill behaviour (skill set at the skill cycle) behind the fall."""
-    inner = SkillBehavior(motions.controller(), None, 0, case.recover_falls)
+    inner = SkillBehavior(motions.controller(case.robot_type), None, case.robot_type, case.recover_falls)
     return inner, FallThenSkill(inner, case)
 
 
 # ---- trainer commands ----------------------------------------------------------------------------------
 def kick_ball_m(case: Case, motions: MotionSource) -> tuple[float, float]:
     """Field position of the ball for a kick case, from the motion's constants (robot frame)."""
-    constants = motions.library().get(case.motion).constants
+    constants = motions.library(case.robot_type).get(case.motion).constants
     forward = float(constants["ball_forward_m"]) + STAND_SHIFT_M
     left = float(constants["ball_left_m"])
     c, s = math.cos(math.radians(case.heading_deg)), math.sin(math.radians(case.heading_deg))

@@ -85,7 +85,7 @@ def agent_completions(fixture: Fixture, case: Case, motions: MotionSource) -> tu
         recorded answers it gave again (1.0: the same agent and motions; vision is not in the fixture).
     """
     inner, fall_behavior = behavior(case, motions)
-    agent = Agent(AgentConfig(TEAM, UNUM, 0, say=False), fall_behavior)
+    agent = Agent(AgentConfig(TEAM, UNUM, case.robot_type, say=False), fall_behavior)
     agent.connect_message()
     rerun = Run("rerun", [])
     done: dict[str, int] = {}

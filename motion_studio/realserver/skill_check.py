@@ -12,6 +12,7 @@ other people's unfinished files do not leak in. With a fixture folder each real 
 from __future__ import annotations
 
 from collections.abc import Callable
+from dataclasses import replace
 from pathlib import Path
 
 from motion_studio.realserver.cases import CASES, MotionSource
@@ -23,7 +24,8 @@ TOOL = "motion-studio real skills"
 
 
 def check_skills(names: list[str], motions: MotionSource, scripts: Path, out: Path, fixture_dir: Path | None = None,
-                 replay_sim: bool = False, report: Callable[[str], None] = lambda line: None) -> dict:
+                 replay_sim: bool = False, report: Callable[[str], None] = lambda line: None,
+                 robot_type: int = 0) -> dict:
     """Run ``names`` (cases.CASES) on both servers (this process inside netns.sh's namespace).
 
     Args:
@@ -33,16 +35,16 @@ def check_skills(names: list[str], motions: MotionSource, scripts: Path, out: Pa
         replay_sim: send the answers our agent gave on our simulator to the real server (the same joint
             commands on both: physics alone compared).
         report: called with each case's table (or why it was skipped).
+        robot_type: the robot type (0-4) that plays every case, with its own motions.
 
     Returns:
-        {"motions": revision, case: {"real": figures, "sim": figures}} (JSON-ready).
+        {"motions": revision, "robot_type": N, case: {"real": figures, "sim": figures}} (JSON-ready).
     """
     out.mkdir(parents=True, exist_ok=True)
-    results: dict = {"motions": motions.revision}
-    available = motions.library()
+    results: dict = {"motions": motions.revision, "robot_type": robot_type}
     for name in names:
-        case = CASES[name]
-        if case.motion is not None and case.motion not in available:
+        case = replace(CASES[name], robot_type=robot_type)
+        if case.motion is not None and case.motion not in motions.library(robot_type):
             report(f"{name}: skipped (no motion {case.motion!r} at {motions.revision})")
             continue
         if replay_sim:  # physics alone: our agent's answers on our simulator, sent to both
@@ -52,7 +54,8 @@ def check_skills(names: list[str], motions: MotionSource, scripts: Path, out: Pa
             real_run, lines = run_real(case, motions, scripts, out, tool=TOOL)
             sim_run = run_sim(case, motions)
         if fixture_dir is not None:
-            write_fixture(lines, fixture_path(fixture_dir, name + ("_simcmds" if replay_sim else "")))
+            suffix = (f"_type{robot_type}" if robot_type else "") + ("_simcmds" if replay_sim else "")
+            write_fixture(lines, fixture_path(fixture_dir, name + suffix))
         real, sim = figures(real_run, case), figures(sim_run, case)
         results[name] = {"real": real, "sim": sim}
         report(table(case, real, sim))

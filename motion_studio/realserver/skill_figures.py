@@ -86,7 +86,8 @@ def figures(run: Run, case: Case) -> dict[str, float | str]:
 
 def table(case: Case, real: dict, sim: dict) -> str:
     """The figures of both runs side by side, with ours - real."""
-    rows = [f"{case.name}", f"  {'figure':28s} {'real 0.7.3':>14s} {'ours':>14s} {'ours - real':>12s}"]
+    title = f"{case.name} (robot type {case.robot_type})" if case.robot_type else case.name
+    rows = [title, f"  {'figure':28s} {'real 0.7.3':>14s} {'ours':>14s} {'ours - real':>12s}"]
     for key in dict.fromkeys([*real, *sim]):
         a, b = real.get(key, ""), sim.get(key, "")
         diff = b - a if isinstance(a, (int, float)) and isinstance(b, (int, float)) else ""

@@ -69,7 +69,7 @@ def run_sim(case: Case, motions: MotionSource) -> Run:
     engine = SimEngine(seed=0)
     host = InProcessHost(engine)
     inner, fall_behavior = behavior(case, motions)
-    agent = Agent(AgentConfig(TEAM, UNUM, 0, say=False), fall_behavior)
+    agent = Agent(AgentConfig(TEAM, UNUM, case.robot_type, say=False), fall_behavior)
     run = Run("sim", [])
     replies = run.replies
 
@@ -105,7 +105,7 @@ def run_sim(case: Case, motions: MotionSource) -> Run:
             record_completions(run, inner, done, index - skill_cycle)
             rotation = world.torso_rotation(key)
             poses = next(bodies for _, unum, _, bodies in world.robot_body_poses() if unum == UNUM)
-            run.self_collisions += len(colliding_pairs(0, poses, SELF_COLLISION_TOLERANCE_M))
+            run.self_collisions += len(colliding_pairs(case.robot_type, poses, SELF_COLLISION_TOLERANCE_M))
             run.truths.append(Truth(world.time_s,
                                     tuple(world.torso_position(key).tolist()), float(rotation[2, 2]),
                                     world.heading_deg(key), world.ball_position(), False))
@@ -153,6 +153,8 @@ def meta_line(case: Case, motions: MotionSource, commands: str, tool: str) -> di
             "move_cycle": CONNECT_CYCLES, "trainer": trainer_commands(case, motions), "skill_cycle": case.skill_cycle,
             "fall": case.fall, "commands": commands, "server": "rcssserver3d 0.7.3 (sync, not real time)",
             "tool": tool}
+    if case.robot_type:
+        meta["robot_type"] = case.robot_type
     if case.start:
         meta["start"] = case.start
         meta["fall_script"] = {str(cycle): step for cycle, step in fall_steps(case).items()}
@@ -177,7 +179,7 @@ def run_real(case: Case, motions: MotionSource, scripts: Path, workdir: Path,
         monitor = MonitorLink()
         sock = connect(AGENT_PORT)
         inner, fall_behavior = behavior(case, motions)
-        agent = (Agent(AgentConfig(TEAM, UNUM, 0, say=False), fall_behavior) if script is None
+        agent = (Agent(AgentConfig(TEAM, UNUM, case.robot_type, say=False), fall_behavior) if script is None
                  else ScriptedAgent(script))
         lines: list[dict] = []
         move_cycle, skill_cycle = CONNECT_CYCLES, case.skill_cycle
