@@ -54,8 +54,9 @@ from motion_studio.tuning import BatchBackend, Parameter, Problem, make_backend
 from motion_studio.tuning.session import one_line_errors, run_cmaes
 from motion_studio.tuning.params_file import Provenance, write_file
 from motion_studio.tuning.run_folder import default_run_dir
-from motions.authoring.standup import (PARAMS_PATH, STANDUPS, GroundPose, StandUpParams, build_standup,
-                                       dumps_section, load_standup_params, read_meta, stance_params, write_all)
+from motions.authoring.standup import (PARAMS_PATH, STANDUPS, GroundPose, SagittalSolver, StandUpParams,
+                                       build_standup, dumps_section, load_standup_params, read_meta, stance_params,
+                                       write_all)
 from motions.model import Motion
 
 CYCLE_S = 0.02
@@ -107,11 +108,30 @@ def _dimension(path: str, low: float, high: float, integer: bool) -> Parameter:
     return Parameter(path, low, high, step=1 if integer else 0.0, decimals=3)
 
 
-def dimensions(params: StandUpParams, frozen: frozenset[str] = frozenset(), timing_only: bool = False) -> list[Parameter]:
+def leg_extra_m(robot_type: int) -> float:
+    """How much longer the legs of ``robot_type`` are than type 0's, hip to sole [m] (REFERENCE §2.5: 0.0366
+    for type 1, 0.0557 for type 3, 0 for the others)."""
+    from kinematics.fk import NaoKinematics
+
+    def sole_below_torso(kind: int) -> float:  # zero pose
+        return -float(NaoKinematics(kind).frame_pose("lsole").position_m[2])
+
+    return round(sole_below_torso(robot_type) - sole_below_torso(0), 4)
+
+
+def pose_bounds(robot_type: int = 0) -> dict[str, tuple[float, float, bool]]:
+    """POSE_BOUNDS for ``robot_type``: the crouch height's upper bound raised by how much longer its legs are."""
+    low, high, integer = POSE_BOUNDS["crouch_height_m"]
+    return {**POSE_BOUNDS, "crouch_height_m": (low, round(high + leg_extra_m(robot_type), 4), integer)}
+
+
+def dimensions(params: StandUpParams, frozen: frozenset[str] = frozenset(), timing_only: bool = False,
+               robot_type: int = 0) -> list[Parameter]:
     """Every tuned parameter of a stand-up with its bounds; ``frozen`` names
     ground phases (or ``ready``) kept as they are; ``timing_only`` keeps the ground phases' angles (their
-    durations and the crouch / rise parameters are tuned)."""
-    dims = [_dimension(name, *bounds) for name, bounds in POSE_BOUNDS.items()
+    durations and the crouch / rise parameters are tuned); ``robot_type``: the crouch may be higher on longer
+    legs (:func:`pose_bounds`)."""
+    dims = [_dimension(name, *bounds) for name, bounds in pose_bounds(robot_type).items()
             if not (name == "ready_ms" and ("ready" in frozen or params.ready_ms == 0))]
     for index, pose in enumerate(params.ground):
         if pose.name not in frozen:
@@ -237,8 +257,15 @@ def _stand_motion() -> Motion:
     return default_library(0).get("stand")
 
 
-def rollout(motion: Motion, side: str, start: Start, seed: int = 0) -> Rollout:
-    """Play ``motion`` on a robot laid on ``side`` from ``start`` (the real agent, no fall recovery)."""
+@lru_cache(maxsize=5)
+def solver_for(robot_type: int) -> SagittalSolver:
+    """The crouch / rise solver with ``robot_type``'s kinematics (one per process and type)."""
+    return SagittalSolver(robot_type)
+
+
+def rollout(motion: Motion, side: str, start: Start, seed: int = 0, robot_type: int = 0) -> Rollout:
+    """Play ``motion`` on a robot of ``robot_type`` laid on ``side`` from ``start`` (the real agent, no fall
+    recovery)."""
     import mujoco
 
     from sim.rules.self_collision import colliding_pairs
@@ -249,8 +276,8 @@ def rollout(motion: Motion, side: str, start: Start, seed: int = 0) -> Rollout:
     first = "stand"
     if start.pose_seed is not None:
         first = library.add(prepose(_stand_motion(), random.Random(start.pose_seed)))
-    scenario = Scenario(PlayMotion(first), seed=seed, recover_falls=False,
-                        controller=MotionController(library, load_dynamic_params(), 0))
+    scenario = Scenario(PlayMotion(first), seed=seed, recover_falls=False, robot_type=robot_type,
+                        controller=MotionController(library, load_dynamic_params(), robot_type))
     scenario.run(STANCE_CYCLES)
     scenario.lay_down(side, start.yaw_deg, start.twist_deg)
     scenario.push(start.push_m_s, start.spin_rad_s)
@@ -269,7 +296,7 @@ def rollout(motion: Motion, side: str, start: Start, seed: int = 0) -> Rollout:
             blowups += 1
             warnings = data.warning[mujoco.mjtWarning.mjWARN_BADQACC].number
             divergences = getattr(scenario.world, "divergences", 0)
-        if cycle % 2 == 0 and colliding_pairs(0, scenario.engine.robot_body_poses()[0][3], 0.04):
+        if cycle % 2 == 0 and colliding_pairs(robot_type, scenario.engine.robot_body_poses()[0][3], 0.04):
             collisions += 1
         forces = scenario.world.foot_forces(scenario.key).values()
         feet = sum(float(np.linalg.norm(force)) for _, force in forces)
@@ -289,43 +316,45 @@ def rollout(motion: Motion, side: str, start: Start, seed: int = 0) -> Rollout:
 
 
 def evaluate(section: str, params: StandUpParams, starts: tuple[Start, ...], target_s: float = TARGET_S,
-             time_weight: float = TIME_WEIGHT) -> dict[str, object]:
+             time_weight: float = TIME_WEIGHT, robot_type: int = 0) -> dict[str, object]:
     """Loss and per-start figures of one candidate (a pose out of reach is a failed candidate); see
-    :class:`Rollout` for ``target_s`` and ``time_weight``."""
+    :class:`Rollout` for ``target_s`` and ``time_weight``; ``robot_type``: the crouch and rise are solved with
+    its kinematics and a robot of that type plays the motion."""
     side = STANDUPS[section]
     stance = stance_params()
     runs = []
     for i, start in enumerate(starts):
         try:
             candidate = params if start.noise_seed is None else noisy(params, start.noise_seed)
-            motion = build_standup(section, candidate, side, stance)
+            motion = build_standup(section, candidate, side, stance, solver=solver_for(robot_type))
         except ValueError as error:
             return {"loss": 2 * FAIL_LOSS + 6.0, "error": str(error)}
-        runs.append(replace(rollout(motion, side, start, seed=i), target_s=target_s, time_weight=time_weight))
+        runs.append(replace(rollout(motion, side, start, seed=i, robot_type=robot_type), target_s=target_s,
+                            time_weight=time_weight))
     losses = [run.loss for run in runs]
     return {"loss": float(np.mean(losses)), "losses": [round(v, 3) for v in losses],
             "times_s": [run.time_s for run in runs], "self_collisions": [run.self_collisions for run in runs]}
 
 
 def _evaluate_values(section: str, base: StandUpParams, starts: tuple[Start, ...], target_s: float, time_weight: float,
-                     values: dict[str, float]) -> dict[str, object]:
+                     robot_type: int, values: dict[str, float]) -> dict[str, object]:
     """:func:`evaluate` of the base with the dotted-path ``values`` put in (runs in worker processes)."""
-    return evaluate(section, with_values(base, values), starts, target_s, time_weight)
+    return evaluate(section, with_values(base, values), starts, target_s, time_weight, robot_type)
 
 
 def tune(section: str, base: StandUpParams, generations: int, starts: tuple[Start, ...], sigma: float = 0.1,
          popsize: int | None = None, workers: int = 1, checkpoint: Path | None = None, seed: int = 0,
          frozen: frozenset[str] = frozenset(), log=print, timing_only: bool = False, target_s: float = TARGET_S,
-         time_weight: float = TIME_WEIGHT, evaluator=None, bar: bool = False) -> dict:
+         time_weight: float = TIME_WEIGHT, evaluator=None, bar: bool = False, robot_type: int = 0) -> dict:
     """CMA-ES over :func:`dimensions` around ``base`` in the run folder ``checkpoint`` (default
     ``out/tuning/standup_<section>``); returns the best {"loss", "values", "result"}.
 
     ``evaluator``: judges a generation at once (``evaluator.evaluate(list of StandUpParams)``, e.g. the real
     server's ``motion_studio.realserver.standup_backend.RealEvaluator``); None = :func:`evaluate` on our
-    simulator from ``starts`` in ``workers`` processes."""
-    dims = dimensions(base, frozen, timing_only)
-    problem = Problem(f"standup:{section}", tuple(dims),
-                      partial(_evaluate_values, section, base, starts, target_s, time_weight),
+    simulator from ``starts`` in ``workers`` processes; ``robot_type``: see :func:`evaluate`."""
+    dims = dimensions(base, frozen, timing_only, robot_type)
+    problem = Problem(f"standup:{section}" + (f":type{robot_type}" if robot_type else ""), tuple(dims),
+                      partial(_evaluate_values, section, base, starts, target_s, time_weight, robot_type),
                       start={d.name: get_value(base, d.name) for d in dims}, fail_loss=2 * FAIL_LOSS + 6.0,
                       rollouts_per_candidate=len(starts))
     if evaluator is not None:
@@ -342,9 +371,36 @@ def tune(section: str, base: StandUpParams, generations: int, starts: tuple[Star
             "run_dir": str(result.run_dir)}
 
 
+TYPE_FILE_HEADER = """# Stand-up parameters of robot type {robot_type} (REFERENCE §2.5), read by motions/authoring/standup_types.py
+# (python -m motions.authoring.standup_types writes motions/files/type{robot_type}/standup_*.xml). Same layout and
+# units as motions/params/standup.toml; the crouch and rise are solved with type {robot_type}'s kinematics.
+# Tuned with python -m motion_studio.tune_standup <section> --type {robot_type} (rewrites a section).
+"""
+
+
+def type_params_file(robot_type: int) -> Path:
+    """Where ``--type N`` reads and writes its parameters: ``motions/params/standup_type<N>.toml`` (type 0: the
+    shared ``standup.toml``). Types 2 and 4 without a file of their own play the shared parameters."""
+    return PARAMS_PATH if robot_type == 0 else PARAMS_PATH.with_name(f"standup_type{robot_type}.toml")
+
+
+def seed_type_file(path: Path, robot_type: int, seed_from: Path = PARAMS_PATH) -> None:
+    """Make a type's parameter file from the stand-up sections of ``seed_from`` (provenance: copied)."""
+    sections = load_standup_params(seed_from)
+    parts = [TYPE_FILE_HEADER.format(robot_type=robot_type)]
+    for name in STANDUPS:
+        meta = {"provenance": f"copied from [{name}] of {seed_from.name} (type 0's parameters), not tuned for "
+                              f"type {robot_type}"}
+        parts.append(dumps_section(name, sections[name], meta))
+    write_file(path, "\n".join(parts), load_standup_params)
+
+
 def write_best(section: str, params: StandUpParams, provenance: str, measured: str = "",
-               path: Path = PARAMS_PATH) -> None:
-    """Rewrite ``section`` of the parameter file (other sections and the header comments kept)."""
+               path: Path = PARAMS_PATH, seed_from: Path = PARAMS_PATH, robot_type: int = 0) -> None:
+    """Rewrite ``section`` of the parameter file (other sections and the header comments kept). A file that
+    does not exist yet is first made from ``seed_from`` (:func:`seed_type_file`)."""
+    if not path.exists():
+        seed_type_file(path, robot_type, seed_from)
     text = path.read_text(encoding="utf-8")
     header_lines = []
     for line in text.splitlines():
@@ -360,6 +416,17 @@ def write_best(section: str, params: StandUpParams, provenance: str, measured: s
             meta = {"provenance": provenance, **({"measured": measured} if measured else {})}
         parts.append(dumps_section(name, value, meta))
     write_file(path, "\n".join(parts), load_standup_params)
+
+
+def _regenerate(params_path: Path, robot_type: int) -> list[Path]:
+    """Rewrite the motion files made from ``params_path`` if it is the type's shipped parameter file."""
+    if params_path.resolve() != type_params_file(robot_type).resolve():
+        return []
+    if robot_type == 0:
+        return write_all()
+    from motions.authoring.standup_types import write_all as write_type
+
+    return write_type(types=(robot_type,))
 
 
 @one_line_errors("motion-studio tune standup")
@@ -395,13 +462,20 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--sim-starts", type=int, default=4,
                         help="lying starts on our simulator (--backend both: the MuJoCo tuner's own, --starts-seed, "
                              "--noise)")
-    parser.add_argument("--params", type=Path, default=PARAMS_PATH,
-                        help="parameter file to start from and to --write into (default the shipped one; the motion "
-                             "files are regenerated only for the shipped one)")
+    parser.add_argument("--params", type=Path, default=None,
+                        help="parameter file to start from and to --write into (default the shipped one of the type: "
+                             "motions/params/standup.toml, standup_type<N>.toml with --type N, made from standup.toml "
+                             "if missing; the motion files are regenerated only for the shipped one)")
+    parser.add_argument("--type", type=int, default=0, choices=range(5), metavar="N", dest="robot_type",
+                        help="robot type 0-4: the candidates' crouch and rise solved with its kinematics, a robot of "
+                             "that type plays them (on every backend); --write goes to its own parameter file and "
+                             "motions/files/type<N>/")
     parser.add_argument("--write", action="store_true", help="write the best parameters and regenerate the files")
     args = parser.parse_args(argv)
-    base = load_standup_params(args.params)[args.section]
-    suffix = "" if args.backend == "mujoco" else f"_{args.backend}"
+    shipped = type_params_file(args.robot_type)
+    params_path = args.params or shipped
+    base = load_standup_params(params_path if params_path.exists() else PARAMS_PATH)[args.section]
+    suffix = (f"_type{args.robot_type}" if args.robot_type else "") + ("" if args.backend == "mujoco" else f"_{args.backend}")
     checkpoint = args.checkpoint or default_run_dir(f"standup_{args.section}{suffix}")
     starts = default_starts(args.starts, seed=args.starts_seed, noise=args.noise)
     frozen = frozenset(name for name in args.freeze.split(",") if name)
@@ -412,11 +486,11 @@ def main(argv: list[str] | None = None) -> int:
         ours = default_starts(args.sim_starts, seed=args.starts_seed, noise=args.noise) if args.sim_starts else ()
         evaluator = make_evaluator(args.section, args.backend, args.starts, args.starts_seed, args.noise, args.workers,
                                    args.target_s, args.time_weight, args.sim_weight, ours,
-                                   args.transfer_starts)
+                                   args.transfer_starts, args.robot_type)
     try:
         best = tune(args.section, base, args.generations, starts, args.sigma, args.popsize, args.workers, checkpoint,
                     args.seed, frozen, timing_only=args.timing_only, target_s=args.target_s,
-                    time_weight=args.time_weight, evaluator=evaluator, bar=True)
+                    time_weight=args.time_weight, evaluator=evaluator, bar=True, robot_type=args.robot_type)
     finally:
         if evaluator is not None:
             evaluator.close()
@@ -424,7 +498,8 @@ def main(argv: list[str] | None = None) -> int:
     if args.write:
         params = with_values(base, best["values"])
         both = f" --sim-weight {args.sim_weight:g} --sim-starts {args.sim_starts}"
-        options = (f" --backend {args.backend}" * (args.backend != "mujoco") + both * (args.backend == "both")
+        options = (f" --type {args.robot_type}" * (args.robot_type != 0)
+                   + f" --backend {args.backend}" * (args.backend != "mujoco") + both * (args.backend == "both")
                    + f" --starts-seed {args.starts_seed}" * (args.starts_seed != 1) + " --noise" * args.noise
                    + " --transfer-starts" * args.transfer_starts
                    + " --timing-only" * args.timing_only
@@ -434,8 +509,8 @@ def main(argv: list[str] | None = None) -> int:
                                     ).text("tuned by CMA-ES")
         times = best["result"].get("times_s")
         write_best(args.section, params, provenance, f"loss {best['loss']:.3f}, time to stand per start {times} s",
-                   args.params)
-        for target in (write_all() if args.params == PARAMS_PATH else []):
+                   params_path, robot_type=args.robot_type)
+        for target in _regenerate(params_path, args.robot_type):
             print(f"wrote {target}")
     return 0
 

@@ -21,7 +21,7 @@ import numpy as np
 
 from motion_studio.realserver.rollout_standup import RealStart, StandUpOutcome, real_starts, transfer_starts
 from motion_studio.realserver.standup_pool import RolloutPool, RolloutRequest
-from motions.authoring.standup import STANDUPS, StandUpParams, build_standup, stance_params
+from motions.authoring.standup import STANDUPS, SagittalSolver, StandUpParams, build_standup, stance_params
 from kinematics.child_process import end_with_parent
 
 #: Backends of the stand-up tuner besides the default in-process MuJoCo one.
@@ -71,6 +71,8 @@ class RealEvaluator:
     """The agent's StandUp skill plays the candidate (fall detection, rest, retries), as the transfer does."""
     sim_too: bool = False
     """The same starts on our simulator as well (the pool's ``sim`` world), weighted by ``sim_weight``."""
+    robot_type: int = 0
+    """The robot type playing the candidates (their crouch and rise solved with its kinematics)."""
 
     def evaluate(self, candidates: list[StandUpParams]) -> list[dict[str, object]]:
         """Loss and per-world figures of each candidate (a pose out of reach is a failed candidate)."""
@@ -78,7 +80,9 @@ class RealEvaluator:
 
         side = STANDUPS[self.section]
         # ours first, in other processes, so that it runs while the real server works
-        packed = [(self.section, params, self.mujoco_starts, self.target_s, self.time_weight) for params in candidates]
+        packed = [(self.section, params, self.mujoco_starts, self.target_s, self.time_weight, self.robot_type)
+                  for params in candidates]
+        solver = SagittalSolver(self.robot_type)
         pending = ([self.executor.submit(_mujoco_loss, p) for p in packed]
                    if self.mujoco_starts and self.executor is not None else [])
         requests: list[RolloutRequest] = []
@@ -87,12 +91,14 @@ class RealEvaluator:
         for index, params in enumerate(candidates):
             try:
                 motions = [build_standup(self.section, params if start.noise_seed is None else
-                                         noisy(params, start.noise_seed), side, self.stance) for start in self.starts]
+                                         noisy(params, start.noise_seed), side, self.stance, solver=solver)
+                           for start in self.starts]
             except ValueError as error:
                 errors[index] = str(error)
                 continue
             for world in ("real", "sim") if self.sim_too else ("real",):
-                requests += [RolloutRequest({self.section: motion}, self.section, start, self.use_skill, world)
+                requests += [RolloutRequest({self.section: motion}, self.section, start, self.use_skill, world,
+                                            robot_type=self.robot_type)
                              for start, motion in zip(self.starts, motions)]
                 owners += [index] * len(motions)
         outcomes = self.pool.run(requests)
@@ -133,11 +139,11 @@ class RealEvaluator:
 
 def make_evaluator(section: str, backend: str, count: int, seed: int, noise: bool, workers: int,
                    target_s: float, time_weight: float, sim_weight: float = 1.0,
-                   mujoco_starts: tuple = (), transfer: bool = False) -> RealEvaluator:
+                   mujoco_starts: tuple = (), transfer: bool = False, robot_type: int = 0) -> RealEvaluator:
     """The evaluator of ``backend`` ("real", or "both" with ``mujoco_starts``) with ``count`` real starts on the
     section's side (``transfer``: the lying starts of ``motion-studio transfer --seed seed``, no noise, the
     StandUp skill playing the candidate as there; with "both" ours plays them too) and
-    ``workers`` real servers (and as many MuJoCo processes)."""
+    ``workers`` real servers (and as many MuJoCo processes); ``robot_type``: the robot playing them."""
     if backend not in BACKENDS:
         raise ValueError(f"unknown backend {backend!r}; known: mujoco, {', '.join(BACKENDS)}")
     ours = tuple(mujoco_starts) if backend == "both" else ()
@@ -146,4 +152,5 @@ def make_evaluator(section: str, backend: str, count: int, seed: int, noise: boo
     starts = (transfer_starts(STANDUPS[section], count, seed) if transfer
               else real_starts(STANDUPS[section], count, seed, noise))
     return RealEvaluator(section, starts, RolloutPool(workers),
-                         target_s, time_weight, ours, sim_weight, pool, use_skill=transfer, sim_too=sim_too)
+                         target_s, time_weight, ours, sim_weight, pool, use_skill=transfer, sim_too=sim_too,
+                         robot_type=robot_type)
