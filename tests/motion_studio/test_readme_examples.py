@@ -57,6 +57,7 @@ HOW = {
     "transfer": PARSE,
     "transfer --record out/fix": PARSE,
     "real skills turn_left --json out/f.json": PARSE,
+    "real skills walk_forward kick dribble --type 4": PARSE,
     "real match --players 3 --duration 120": PARSE,
     "real trace crouch out/crouch.jsonl.gz": PARSE,
     "calibrate": PARSE,
