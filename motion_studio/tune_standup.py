@@ -24,10 +24,17 @@ falls from the zero pose by the transfer case's script and the StandUp skill pla
 stick (no Coulomb limit, REFERENCE §2.4): a stand-up that drags the feet or the lying torso across the ground,
 as ours allows, fails there.
 
+``--type N`` tunes robot type N's own stand-up (REFERENCE §2.5; types 1 and 3 have longer legs): the candidates'
+crouch and rise are solved with that type's kinematics (as ``motions.authoring.standup_types`` writes them; the
+crouch may be as much higher as the legs are longer), a robot of that type plays them on every backend, the
+parameters come from and ``--write`` goes to ``motions/params/standup_type<N>.toml`` (made from
+``standup.toml`` if missing; the shared file is never written) and the files to ``motions/files/type<N>/``.
+
 Run::
 
     python -m motion_studio.tune_standup standup_front --generations 60 --write
     motion-studio tune standup standup_back --backend both --starts 8 --noise --workers 2
+    motion-studio tune standup standup_front --type 1 --backend both --transfer-starts --starts 4 --sim-starts 0
 
 The run folder (``out/tuning/standup_<section>``: checkpoint, trace of every evaluation, plots;
 ``motion_studio.tuning``) is checkpointed after each generation; running the same command again resumes from
