@@ -76,6 +76,11 @@ MIN_S = 4.2
 MAX_S = 7.0
 #: A rollout ends once the agent has felt itself standing this many cycles beyond HOLD_S.
 EARLY_STOP_MARGIN_CYCLES = 10
+#: A torso centre above this [m] was lifted by the referee: the Incapable foul (REFERENCE §4.5: on the ground
+#: 15 s) lifts the robot to z = 1 for 0.5 s and puts it down standing, which would read as standing up at once.
+#: Seen when many failing rollouts ran on one server (the foul's ground time carried over the trainer resets):
+#: the rollout is void and runs again on a fresh server.
+REFEREE_LIFT_Z_M = 0.7
 #: The camera sits this far above the torso centre (REFERENCE §2.3) [m].
 CAMERA_ABOVE_TORSO_M = 0.155
 #: Bodies whose positions a trace keeps.
@@ -379,7 +384,7 @@ class StandUpBench:
             try:
                 return self._rollout(motions, play, start, use_skill, trace)
             except (OSError, RuntimeError) as error:
-                logger.warning("server stalled (%s); restarting it", error)
+                logger.warning("server stalled or rollout void (%s); restarting it", error)
                 self.close()
         raise RuntimeError("the server stalled twice in a row")
 
@@ -467,6 +472,9 @@ class StandUpBench:
                                        {k: round(math.degrees(v), 1) for k, v in body_world.body.joints_rad.items()}
                                        if trace else {}))
         samples, collisions = world.truths()
+        reason = void_reason(samples, start_time_s)
+        if reason:
+            raise RuntimeError(f"rollout void: {reason}")
         outcome = outcome_of(samples, records, start_time_s, collisions)
         outcome.attempts = skill.attempts if use_skill else 1
         if trace:
@@ -481,6 +489,17 @@ class StandUpBench:
                 if record is not None:
                     row.update(phase=record.phase, feet_n=round(record.feet_n, 1), joints=record.joints_deg)
         return outcome
+
+
+def void_reason(samples: dict[int, TruthSample], start_time_s: float) -> str | None:
+    """Why the stand-up phase from ``start_time_s`` says nothing about the stand-up (None: it is valid): the
+    robot was not lying when it began, or the referee lifted it (``REFEREE_LIFT_Z_M``)."""
+    phase = [samples[k] for k in sorted(samples) if samples[k].time_s >= start_time_s - 1e-6]
+    if any(sample.torso_m[2] > REFEREE_LIFT_Z_M for sample in phase):
+        return "the referee lifted the robot (Incapable foul)"
+    if phase and phase[0].torso_m[2] > STAND_Z_M:
+        return "the robot was up when the stand-up began"
+    return None
 
 
 def outcome_of(samples: dict[int, TruthSample], records: list[CycleRecord], start_time_s: float,

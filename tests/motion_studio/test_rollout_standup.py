@@ -67,6 +67,18 @@ def test_the_time_to_stand_starts_when_the_torso_stays_up_for_a_second():
     assert never.time_s is None and never.best_score < 0.5
 
 
+def test_a_rollout_the_referee_interfered_with_is_void():
+    from motion_studio.realserver.rollout_standup import void_reason
+
+    lying = {i: _sample(i, 0.09, 0.0) for i in range(100, 200)}
+    assert void_reason(lying, 100 * CYCLE_S) is None
+    # the Incapable foul lifts the robot to z = 1 for 0.5 s, then puts it down standing
+    lifted = {**lying, **{i: _sample(i, 1.0) for i in range(150, 175)}, **{i: _sample(i, 0.4) for i in range(175, 200)}}
+    assert "referee" in void_reason(lifted, 100 * CYCLE_S)
+    assert void_reason(lifted, 180 * CYCLE_S) is not None  # standing when the stand-up began
+    assert void_reason({**lying, 90: _sample(90, 1.0)}, 100 * CYCLE_S) is None  # before the stand-up: not its business
+
+
 def test_a_missing_monitor_frame_takes_the_previous_one():
     records = [CycleRecord(i * CYCLE_S, 0.0, "") for i in range(1, 80)]
     samples = {i: _sample(i, 0.34) for i in range(1, 80) if i % 7}
