@@ -127,9 +127,12 @@ def leg_extra_m(robot_type: int) -> float:
 
 
 def pose_bounds(robot_type: int = 0) -> dict[str, tuple[float, float, bool]]:
-    """POSE_BOUNDS for ``robot_type``: the crouch height's upper bound raised by how much longer its legs are."""
+    """POSE_BOUNDS for ``robot_type``: the crouch height's upper bound raised by how much longer its legs are,
+    the lower one by half that (type 3's crouch is out of reach below ~0.27 m at the usual leans, so a quarter
+    of the candidates of a first type-3 run were void)."""
     low, high, integer = POSE_BOUNDS["crouch_height_m"]
-    return {**POSE_BOUNDS, "crouch_height_m": (low, round(high + leg_extra_m(robot_type), 4), integer)}
+    extra = leg_extra_m(robot_type)
+    return {**POSE_BOUNDS, "crouch_height_m": (round(low + extra / 2, 4), round(high + extra, 4), integer)}
 
 
 def dimensions(params: StandUpParams, frozen: frozenset[str] = frozenset(), timing_only: bool = False,

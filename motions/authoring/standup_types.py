@@ -16,11 +16,13 @@ on 2026-11-23, 20 seed-0 draws: 19 in 2.42-2.90 s, one not up after 8 s and 3 at
 timings, type 0's files get a type-4 robot up from its back too, but slower: of 10 back trials drawn as
 the benchmark's (robot type 4), 6 within 3 s and two only after a retry (5.6, 6.6 s), against 10 of 10
 within 3 s (2.5-2.9 s) with these files. Type 2 has type 0's
-geometry and stands with type 0's files (back 6/6, front 6/6). Types 1 and 3 (longer legs) are not
-written: neither these files nor foot-and-hand retargeting of the ground phases got them up from the
-front (0 of 4), and from the back 0-1 of 4; they need ground phases tuned for their legs. Our team
-therefore fields types 0, 2 and 4
-(``agent.team.composition``).
+geometry and stands with type 0's files (back 6/6, front 6/6).
+
+Types 1 and 3 (longer legs) have parameter files of their own, ``motions/params/standup_type<N>.toml``
+(:func:`type_params_path`; made from ``standup.toml`` and tuned per type with ``motion-studio tune standup
+<section> --type N``, which solves and plays the candidates as this module writes them): with type 0's
+parameters neither got up from the front on either server (type 3: from the front on the real server only
+after a retry, from the back on neither). What each section gave is in its provenance and measured keys.
 
 Run ``python -m motions.authoring.standup_types`` after ``python -m motions.authoring.standup``.
 """

@@ -19,6 +19,7 @@ def test_longer_legs_may_crouch_higher():
     bounds = {d.name: (d.low, d.high) for d in tune_standup.dimensions(params)}
     typed = {d.name: (d.low, d.high) for d in tune_standup.dimensions(params, robot_type=3)}
     assert typed["crouch_height_m"][1] == pytest.approx(bounds["crouch_height_m"][1] + 0.0557, abs=1e-4)
+    assert typed["crouch_height_m"][0] == pytest.approx(bounds["crouch_height_m"][0] + 0.0557 / 2, abs=1e-4)
     assert {k: v for k, v in typed.items() if k != "crouch_height_m"} == \
         {k: v for k, v in bounds.items() if k != "crouch_height_m"}
     assert tune_standup.leg_extra_m(1) == pytest.approx(0.0366, abs=1e-4) and tune_standup.leg_extra_m(4) == 0.0
