@@ -428,6 +428,27 @@ def write_best(section: str, params: StandUpParams, provenance: str, measured: s
     write_file(path, "\n".join(parts), load_standup_params)
 
 
+def run_folder_best(run_dir: Path) -> dict:
+    """The lowest-loss candidate of a run folder's trace: {"loss", "values", "result", "generation" (1-based; 0 =
+    the start point), "generations" (run so far)}.
+
+    Raises:
+        TuningError: no evaluated candidate in the folder.
+    """
+    from motion_studio.tuning.trace import read_trace
+
+    rows = read_trace(Path(run_dir) / "trace.jsonl") if (Path(run_dir) / "trace.jsonl").exists() else []
+    evaluations = [r for r in rows if r.get("kind") == "evaluation" and not r.get("failed")]
+    if not evaluations:
+        from motion_studio.tuning.errors import TuningError
+
+        raise TuningError(f"{run_dir}: no evaluated candidate in its trace.jsonl (nothing to write)")
+    best = min(evaluations, key=lambda r: r["loss"])
+    generations = sum(1 for r in rows if r.get("kind") == "iteration")
+    return {"loss": best["loss"], "values": dict(best["values"]), "result": best.get("result", {}),
+            "generation": int(best.get("iteration", -1)) + 1, "generations": generations}
+
+
 def _regenerate(params_path: Path, robot_type: int) -> list[Path]:
     """Rewrite the motion files made from ``params_path`` if it is the type's shipped parameter file."""
     if params_path.resolve() != type_params_file(robot_type).resolve():
@@ -481,6 +502,9 @@ def main(argv: list[str] | None = None) -> int:
                              "that type plays them (on every backend); --write goes to its own parameter file and "
                              "motions/files/type<N>/")
     parser.add_argument("--write", action="store_true", help="write the best parameters and regenerate the files")
+    parser.add_argument("--write-only", action="store_true",
+                        help="run nothing: write the lowest-loss candidate the run folder's trace holds (a run stopped "
+                             "early; resuming runs --generations more) and regenerate the files")
     args = parser.parse_args(argv)
     shipped = type_params_file(args.robot_type)
     params_path = args.params or shipped
@@ -490,20 +514,24 @@ def main(argv: list[str] | None = None) -> int:
     starts = default_starts(args.starts, seed=args.starts_seed, noise=args.noise)
     frozen = frozenset(name for name in args.freeze.split(",") if name)
     evaluator = None
-    if args.backend != "mujoco":
+    if args.write_only:
+        best = run_folder_best(checkpoint)
+        args.write = True
+    elif args.backend != "mujoco":
         from motion_studio.realserver.standup_backend import make_evaluator
 
         ours = default_starts(args.sim_starts, seed=args.starts_seed, noise=args.noise) if args.sim_starts else ()
         evaluator = make_evaluator(args.section, args.backend, args.starts, args.starts_seed, args.noise, args.workers,
                                    args.target_s, args.time_weight, args.sim_weight, ours,
                                    args.transfer_starts, args.robot_type)
-    try:
-        best = tune(args.section, base, args.generations, starts, args.sigma, args.popsize, args.workers, checkpoint,
-                    args.seed, frozen, timing_only=args.timing_only, target_s=args.target_s,
-                    time_weight=args.time_weight, evaluator=evaluator, bar=True, robot_type=args.robot_type)
-    finally:
-        if evaluator is not None:
-            evaluator.close()
+    if not args.write_only:
+        try:
+            best = tune(args.section, base, args.generations, starts, args.sigma, args.popsize, args.workers,
+                        checkpoint, args.seed, frozen, timing_only=args.timing_only, target_s=args.target_s,
+                        time_weight=args.time_weight, evaluator=evaluator, bar=True, robot_type=args.robot_type)
+        finally:
+            if evaluator is not None:
+                evaluator.close()
     print(json.dumps(best, indent=1))
     if args.write:
         params = with_values(base, best["values"])
@@ -514,8 +542,10 @@ def main(argv: list[str] | None = None) -> int:
                    + " --transfer-starts" * args.transfer_starts
                    + " --timing-only" * args.timing_only
                    + (f" --target-s {args.target_s:g} --time-weight {args.time_weight:g}" if args.time_weight else ""))
-        provenance = Provenance.now(f"motion-studio tune standup {args.section} --starts {len(starts)}{options} "
-                                    f"--freeze '{args.freeze}' --sigma {args.sigma:g} --generations {args.generations}"
+        generations = (f"(stopped early; best of generation {best['generation']} of {best['generations']}, written "
+                       f"with --write-only)" if args.write_only else f"--generations {args.generations}")
+        provenance = Provenance.now(f"motion-studio tune standup {args.section} --starts {args.starts}{options} "
+                                    f"--freeze '{args.freeze}' --sigma {args.sigma:g} {generations}"
                                     ).text("tuned by CMA-ES")
         times = best["result"].get("times_s")
         write_best(args.section, params, provenance, f"loss {best['loss']:.3f}, time to stand per start {times} s",

@@ -105,3 +105,31 @@ def test_the_type_option_is_offered(capsys):
     assert "--type N" in capsys.readouterr().out
     with pytest.raises(SystemExit):
         tune_standup.main(["standup_back", "--type", "7"])
+
+
+def test_write_only_writes_the_best_of_a_stopped_run(tmp_path):
+    import json
+
+    run = tmp_path / "run"
+    run.mkdir()
+    rows = [{"kind": "run", "problem": "standup:standup_back:type3"},
+            {"kind": "evaluation", "iteration": -1, "index": 0, "loss": 9.0, "values": {"crouch_ms": 400},
+             "result": {"times_s": [None]}},
+            {"kind": "evaluation", "iteration": 0, "index": 0, "loss": 4.5, "values": {"crouch_ms": 350},
+             "result": {"times_s": [2.2]}},
+            {"kind": "iteration", "iteration": 0, "evaluations": 2, "best_loss": 4.5},
+            {"kind": "evaluation", "iteration": 1, "index": 0, "loss": 7.0, "values": {"crouch_ms": 300},
+             "result": {"times_s": [None]}},
+            {"kind": "iteration", "iteration": 1, "evaluations": 3, "best_loss": 4.5}]
+    (run / "trace.jsonl").write_text("".join(json.dumps(r) + "\n" for r in rows))
+    best = tune_standup.run_folder_best(run)
+    assert (best["loss"], best["generation"], best["generations"]) == (4.5, 1, 2)
+    target = tmp_path / "standup_type3.toml"
+    assert tune_standup.main(["standup_back", "--type", "3", "--params", str(target), "--checkpoint", str(run),
+                              "--write-only", "--backend", "real"]) == 0
+    assert load_standup_params(target)["standup_back"].crouch_ms == 350
+    text = target.read_text(encoding="utf-8")
+    assert "best of generation 1 of 2" in text and "[2.2]" in text
+    # an empty run folder: nothing to write (one line, exit code 2)
+    assert tune_standup.main(["standup_back", "--type", "3", "--params", str(target), "--checkpoint",
+                              str(tmp_path / "none"), "--write-only"]) == 2
