@@ -23,6 +23,11 @@ Types 1 and 3 (longer legs) have parameter files of their own, ``motions/params/
 <section> --type N``, which solves and plays the candidates as this module writes them): with type 0's
 parameters neither got up from the front on either server (type 3: from the front on the real server only
 after a retry, from the back on neither). What each section gave is in its provenance and measured keys.
+On 2026-11-26 (``motion-studio real skills standup_back standup_front --type N``, stood up after the scripted
+fall, real / ours): type 1 from its front 4.10 / 3.74 s, from its back 4.08 / 4.02 s; type 3 from its front
+5.22 / 4.24 s, from its back 3.70 / 3.88 s. Our stand-up benchmark (``motion-studio bench skills --skill standup
+--type 1,3``, 20 lying trials per side, within 3 s / stood at all), before -> after: type 1 back 10 / 10 ->
+50 / 70 %, front 0 / 0 -> 75 / 100 %; type 3 back 5 / 5 -> 65 / 100 %, front 0 / 0 -> 90 / 100 %.
 
 Run ``python -m motions.authoring.standup_types`` after ``python -m motions.authoring.standup``.
 """
