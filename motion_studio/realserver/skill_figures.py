@@ -72,8 +72,8 @@ def figures(run: Run, case: Case) -> dict[str, float | str]:
         out["dribble time [s]"] = math.nan if dribble["time_s"] is None else dribble["time_s"]
         out["dribble speed [m/s]"] = math.nan if dribble["speed_m_s"] is None else dribble["speed_m_s"]
         out[f"ball within {KEEP_M} m [share]"] = dribble["keep_share"]
-        out["ball from torso p95 [m]"] = dribble["distance_p95_m"] if dribble["distance_p95_m"] is not None else math.nan
-        out["ball from torso max [m]"] = dribble["distance_max_m"] if dribble["distance_max_m"] is not None else math.nan
+        for label, key in (("p95", "distance_p95_m"), ("max", "distance_max_m")):
+            out[f"ball from torso {label} [m]"] = math.nan if dribble[key] is None else dribble[key]
         out["dribble fell"] = "yes" if dribble["fell"] else "no"
     if case.fall:
         # stood up: the torso centre above 0.30 m for 1 s after the fall (measures.stood_index; an upright

@@ -292,9 +292,8 @@ def test_twelve_seconds_of_the_real_walk_stay_upright() -> None:
 @pytest.mark.xfail(strict=True, reason="measured disagreement: same commands of an untuned kick (not shipped); the "
                    "real ball rolls 0.84 m (0.99 m/s in its first step: the real knee, rlj4, stalls against the ball, "
                    "-79.7 -> -77.2 -> -76.4 deg, where ours goes on to -71.4), ours 1.70 m (1.91 m/s). With the ball "
-                   "contacts fitted on the shipped kick (mu 0.5 on robots, 2026-11-26) ours went from 1.32 to 1.70 m (1.78 m on "
-                   "the contacts fitted on pushes too): "
-                   "one Coulomb mu cannot give SimSpark's force-dependent slip (0.3 m/s per N on ball contacts), which "
+                   "contacts fitted on the shipped kick (mu 0.5 on robots, 2026-11-26) ours went from 1.32 to 1.70 m "
+                   "(1.78 m on the contacts fitted on pushes too): one Coulomb mu cannot give SimSpark's force-dependent slip (0.3 m/s per N on ball contacts), which "
                    "lets a hard strike slip and a slow push grip. (The ankle blow-up first seen here is gone since "
                    "3b6a27e and ODE's stops; the guard now also puts the ball back.)")
 def test_same_kick_commands_move_the_ball_as_far() -> None:
