@@ -381,7 +381,8 @@ def tune(section: str, base: StandUpParams, generations: int, starts: tuple[Star
             "run_dir": str(result.run_dir)}
 
 
-TYPE_FILE_HEADER = """# Stand-up parameters of robot type {robot_type} (REFERENCE §2.5), read by motions/authoring/standup_types.py
+TYPE_FILE_HEADER = """# Stand-up parameters of robot type {robot_type} (REFERENCE §2.5), read by
+# motions/authoring/standup_types.py
 # (python -m motions.authoring.standup_types writes motions/files/type{robot_type}/standup_*.xml). Same layout and
 # units as motions/params/standup.toml; the crouch and rise are solved with type {robot_type}'s kinematics.
 # Tuned with python -m motion_studio.tune_standup <section> --type {robot_type} (rewrites a section).
@@ -509,7 +510,8 @@ def main(argv: list[str] | None = None) -> int:
     shipped = type_params_file(args.robot_type)
     params_path = args.params or shipped
     base = load_standup_params(params_path if params_path.exists() else PARAMS_PATH)[args.section]
-    suffix = (f"_type{args.robot_type}" if args.robot_type else "") + ("" if args.backend == "mujoco" else f"_{args.backend}")
+    suffix = ((f"_type{args.robot_type}" if args.robot_type else "")
+              + ("" if args.backend == "mujoco" else f"_{args.backend}"))
     checkpoint = args.checkpoint or default_run_dir(f"standup_{args.section}{suffix}")
     starts = default_starts(args.starts, seed=args.starts_seed, noise=args.noise)
     frozen = frozenset(name for name in args.freeze.split(",") if name)
