@@ -15,7 +15,7 @@ distance from the robot (torso centre to ball centre, on the ground) over the ru
 ``KEEP_M`` (0.5 m), its 95th percentile and maximum [m]; the ball's distance from the line at the end [m];
 falls. A trial passes when the robot did not fall, the ball went its way at ``SPEED_M_S`` or faster and stayed
 within ``KEEP_M`` for ``KEEP_SHARE`` of the cycles. The same cases run on the real rcssserver3d with
-``motion-studio real skills --case dribble --case dribble_turn_left`` (``motion_studio.realserver.cases``).
+``motion-studio real skills dribble dribble_turn_left dribble_turn_right`` (``motion_studio.realserver.cases``).
 """
 
 from __future__ import annotations
