@@ -60,7 +60,7 @@ from motion_studio.scenarios import Scenario
 from motion_studio.tuning import BatchBackend, Parameter, Problem, make_backend
 from motion_studio.tuning.session import one_line_errors, run_cmaes
 from motion_studio.tuning.params_file import Provenance, write_file
-from motion_studio.tuning.run_folder import default_run_dir
+from motion_studio.tuning.run_folder import best_evaluation, default_run_dir
 from motions.authoring.standup import (PARAMS_PATH, STANDUPS, GroundPose, SagittalSolver, StandUpParams,
                                        build_standup, dumps_section, load_standup_params, read_meta, stance_params,
                                        write_all)
@@ -430,24 +430,15 @@ def write_best(section: str, params: StandUpParams, provenance: str, measured: s
 
 
 def run_folder_best(run_dir: Path) -> dict:
-    """The lowest-loss candidate of a run folder's trace: {"loss", "values", "result", "generation" (1-based; 0 =
-    the start point), "generations" (run so far)}.
+    """The lowest-loss candidate of a run folder's trace (``run_folder.best_evaluation``): {"loss", "values",
+    "result", "generation" (1-based; 0 = the start point), "generations" (run so far)}.
 
     Raises:
         TuningError: no evaluated candidate in the folder.
     """
-    from motion_studio.tuning.trace import read_trace
-
-    rows = read_trace(Path(run_dir) / "trace.jsonl") if (Path(run_dir) / "trace.jsonl").exists() else []
-    evaluations = [r for r in rows if r.get("kind") == "evaluation" and not r.get("failed")]
-    if not evaluations:
-        from motion_studio.tuning.errors import TuningError
-
-        raise TuningError(f"{run_dir}: no evaluated candidate in its trace.jsonl (nothing to write)")
-    best = min(evaluations, key=lambda r: r["loss"])
-    generations = sum(1 for r in rows if r.get("kind") == "iteration")
+    best = best_evaluation(run_dir)
     return {"loss": best["loss"], "values": dict(best["values"]), "result": best.get("result", {}),
-            "generation": int(best.get("iteration", -1)) + 1, "generations": generations}
+            "generation": int(best.get("iteration", -1)) + 1, "generations": best["generations"]}
 
 
 def _regenerate(params_path: Path, robot_type: int) -> list[Path]:

@@ -41,6 +41,23 @@ def where_lines(result: RunResult, plots: list[Path]) -> list[str]:
 
 
 
+def best_evaluation(run_dir: Path) -> dict:
+    """The trace record of the lowest-loss candidate a run folder holds, with ``"generations"``: how many
+    generations the run finished.
+
+    Raises:
+        TuningError: the folder has no trace or no evaluated candidate.
+    """
+    from motion_studio.tuning.errors import TuningError
+
+    records = read_trace(Path(run_dir) / "trace.jsonl")
+    evaluations = [r for r in records if r["kind"] == "evaluation" and not r.get("failed")]
+    if not evaluations:
+        raise TuningError(f"{run_dir}: no evaluated candidate in its trace.jsonl")
+    best = min(evaluations, key=lambda r: r["loss"])
+    return {**best, "generations": sum(1 for r in records if r["kind"] == "iteration")}
+
+
 def best_values(run_dir: Path) -> dict[str, float]:
     """The tuned values of the lowest-loss candidate a run folder's trace holds (a search started from
     another's best).
@@ -48,11 +65,7 @@ def best_values(run_dir: Path) -> dict[str, float]:
     Raises:
         TuningError: the folder has no trace or no evaluated candidate.
     """
-    from motion_studio.tuning.errors import TuningError
+    return dict(best_evaluation(run_dir)["values"])
 
-    evaluations = [r for r in read_trace(Path(run_dir) / "trace.jsonl")
-                   if r["kind"] == "evaluation" and not r.get("failed")]
-    if not evaluations:
-        raise TuningError(f"{run_dir}: no evaluated candidate in its trace.jsonl")
-    return dict(min(evaluations, key=lambda r: r["loss"])["values"])
-__all__ = ["RUNS_DIR", "best_values", "default_run_dir", "draw_plots", "where_lines"]
+
+__all__ = ["RUNS_DIR", "best_evaluation", "best_values", "default_run_dir", "draw_plots", "where_lines"]
