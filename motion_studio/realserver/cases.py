@@ -24,12 +24,7 @@ from agent.skills.turn import TurnBy
 from agent.world_model import WorldModel
 from motion_studio.realserver.git_export import export_motions, short_revision
 from agent.protocol.constants import CYCLE_S
-from motion_studio.skill_bench.dribble import BALL_AHEAD_M, LOOK_DOWN_DEG
-from motion_studio.skill_bench.dribble import LIMIT_S as DRIBBLE_LIMIT_S
-from motion_studio.skill_bench.dribble import STRAIGHT_M as DRIBBLE_STRAIGHT_M
-from motion_studio.skill_bench.dribble import STRAIGHT_TARGET_M as DRIBBLE_STRAIGHT_TARGET_M
-from motion_studio.skill_bench.dribble import TURN_M as DRIBBLE_TURN_M
-from motion_studio.skill_bench.dribble import TURN_TARGET_M as DRIBBLE_TURN_TARGET_M
+from motion_studio.skill_bench import dribble as dribble_bench
 
 #: Cycles before the move (scene, init, the agent's own beam), as motion_studio.scenarios.CONNECT_CYCLES.
 CONNECT_CYCLES = 6
@@ -148,22 +143,24 @@ def _dribble(name: str, position_m: tuple[float, float], direction_deg: float, w
              target_m: float) -> Case:
     """The benchmark's dribble (``motion_studio.skill_bench.dribble``): the robot facing +x in the walk stance,
     the ball BALL_AHEAD_M in front of its torso, the target ``target_m`` from the ball along ``direction_deg``."""
-    ball = (position_m[0] + BALL_AHEAD_M, position_m[1])
+    ball = (position_m[0] + dribble_bench.BALL_AHEAD_M, position_m[1])
     direction = math.radians(direction_deg)
     target = (ball[0] + target_m * math.cos(direction), ball[1] + target_m * math.sin(direction))
-    cycles = STAND_CYCLES + int(DRIBBLE_LIMIT_S / CYCLE_S)
-    return Case(name, lambda: SkillSequence((PlayMotion("stand", repeat=True, head_deg=LOOK_DOWN_DEG), STAND_CYCLES),
+    cycles = STAND_CYCLES + int(dribble_bench.LIMIT_S / CYCLE_S)
+    look_down = dribble_bench.LOOK_DOWN_DEG
+    return Case(name, lambda: SkillSequence((PlayMotion("stand", repeat=True, head_deg=look_down), STAND_CYCLES),
                                             (Dribble(*target), None)), cycles,
                 position_m=position_m, ball_m=ball, dribble=(direction_deg, way_m))
 
 
-CASES["dribble"] = _dribble("dribble", (-8.0, 0.0), 0.0, DRIBBLE_STRAIGHT_M, DRIBBLE_STRAIGHT_TARGET_M)
+CASES["dribble"] = _dribble("dribble", (-8.0, 0.0), 0.0, dribble_bench.STRAIGHT_M, dribble_bench.STRAIGHT_TARGET_M)
 #: The dribble's first touches only (8 s): recorded with ``--replay-sim`` (our agent's commands on both servers) it
 #: compares how far a walking foot pushes the ball, physics alone (``motion-studio calibrate``).
 CASES["dribble_push"] = replace(CASES["dribble"], name="dribble_push", cycles=STAND_CYCLES + DRIBBLE_PUSH_CYCLES)
-CASES["dribble_turn_left"] = _dribble("dribble_turn_left", (-6.0, -4.0), 90.0, DRIBBLE_TURN_M, DRIBBLE_TURN_TARGET_M)
-CASES["dribble_turn_right"] = _dribble("dribble_turn_right", (-6.0, 4.0), -90.0, DRIBBLE_TURN_M,
-                                       DRIBBLE_TURN_TARGET_M)
+CASES["dribble_turn_left"] = _dribble("dribble_turn_left", (-6.0, -4.0), 90.0, dribble_bench.TURN_M,
+                                      dribble_bench.TURN_TARGET_M)
+CASES["dribble_turn_right"] = _dribble("dribble_turn_right", (-6.0, 4.0), -90.0, dribble_bench.TURN_M,
+                                       dribble_bench.TURN_TARGET_M)
 for _case in list(CASES.values()):
     if _case.motion is None and _case.name in ("stand", "turn_left", "turn_right", "walk_forward", "walk_backward",
                                                "walk_left", "walk_right"):
@@ -233,7 +230,7 @@ class MotionSource:
         """A motion controller on these motions (None: SkillBehavior's default, the working tree's)."""
         if self.folder is None:
             return None
-        return MotionController(default_library(robot_type, self.folder / "files"),
+        return MotionController(self.library(robot_type),
                                 load_dynamic_params(self.folder / "params" / "dynamic_elements.toml"), robot_type)
 
 

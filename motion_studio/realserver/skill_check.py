@@ -42,9 +42,10 @@ def check_skills(names: list[str], motions: MotionSource, scripts: Path, out: Pa
     """
     out.mkdir(parents=True, exist_ok=True)
     results: dict = {"motions": motions.revision, "robot_type": robot_type}
+    available = motions.library(robot_type)
     for name in names:
         case = replace(CASES[name], robot_type=robot_type)
-        if case.motion is not None and case.motion not in motions.library(robot_type):
+        if case.motion is not None and case.motion not in available:
             report(f"{name}: skipped (no motion {case.motion!r} at {motions.revision})")
             continue
         if replay_sim:  # physics alone: our agent's answers on our simulator, sent to both
