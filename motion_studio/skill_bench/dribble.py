@@ -73,12 +73,18 @@ def _scenario(heading_deg: float, ball_across_m: float, seed: int, robot_type: i
     return scenario, ball
 
 
+def ball_on_line(truth: Truth, ball_start: tuple[float, float], direction_deg: float) -> tuple[float, float]:
+    """Where the ball is relative to its line: (along ``direction_deg`` from ``ball_start``, to its left) [m]."""
+    direction = math.radians(direction_deg)
+    dx, dy = truth.ball_m[0] - ball_start[0], truth.ball_m[1] - ball_start[1]
+    return dx * math.cos(direction) + dy * math.sin(direction), -dx * math.sin(direction) + dy * math.cos(direction)
+
+
 def measure(truths: Sequence[Truth | None], ball_start: tuple[float, float], direction_deg: float,
             way_m: float) -> dict:
     """The dribble figures of a run's truths (one per cycle from the dribble's start; None = no truth that
     cycle), measured until the ball has gone ``way_m`` along ``direction_deg`` from ``ball_start`` (or the end).
     Shared by the benchmark and ``motion-studio real skills`` (the real server's truths)."""
-    along = (math.cos(math.radians(direction_deg)), math.sin(math.radians(direction_deg)))
     distances: list[float] = []
     fell = False
     reached_s = None
@@ -89,14 +95,13 @@ def measure(truths: Sequence[Truth | None], ball_start: tuple[float, float], dir
         last = truth
         fell = fell or truth.fallen
         distances.append(math.dist(truth.ball_m[:2], truth.torso_m[:2]))
-        progress = (truth.ball_m[0] - ball_start[0]) * along[0] + (truth.ball_m[1] - ball_start[1]) * along[1]
-        if progress >= way_m:
+        if ball_on_line(truth, ball_start, direction_deg)[0] >= way_m:
             reached_s = (index + 1) * CYCLE_S
             break
     if last is None:
         return {"way_m": way_m, "time_s": None, "speed_m_s": None, "keep_share": 0.0, "distance_p95_m": None,
                 "distance_max_m": None, "off_line_m": None, "fell": False}
-    off_line = -(last.ball_m[0] - ball_start[0]) * along[1] + (last.ball_m[1] - ball_start[1]) * along[0]
+    off_line = ball_on_line(last, ball_start, direction_deg)[1]
     spread = np.asarray(distances)
     return {
         "way_m": way_m,
@@ -121,8 +126,7 @@ def dribble_run(scenario: Scenario, ball_start: tuple[float, float], direction_d
     scenario.set_skill(Dribble(*target))
 
     def finished(truth: Truth) -> bool:
-        progress = (truth.ball_m[0] - ball_start[0]) * along[0] + (truth.ball_m[1] - ball_start[1]) * along[1]
-        return truth.fallen or progress >= way_m
+        return truth.fallen or ball_on_line(truth, ball_start, direction_deg)[0] >= way_m
 
     truths = scenario.run(int(limit_s / CYCLE_S), stop=finished)
     trace = {"time_s": [round((i + 1) * CYCLE_S, 2) for i in range(0, len(truths), TRACE_EVERY)]}
