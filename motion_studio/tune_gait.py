@@ -9,7 +9,15 @@ Run::
 
     python -m motion_studio.tune_gait walk_forward --generations 30 --workers 2 --write
 
-The run folder (``out/tuning/gait_<motion>_<step cycles>``: checkpoint, trace of every evaluation, plots;
+``--backend real`` judges the candidates on the real rcssserver3d 0.7.3 instead
+(``motion_studio.realserver.gait_backend``: the process re-runs itself inside the real-server scripts' private
+namespace, one server, one walk at a time, the robot put back by trainer commands; the trials without pushes,
+scored by the same :func:`trial_score` from the monitor's truth); ``--backend both`` takes the mean of that loss
+and ours (our trials, pushes and ``--robust`` transitions included)::
+
+    python -m motion_studio.tune_gait walk_forward --backend both --lean --robust 6 --generations 12
+
+The run folder (``out/tuning/gait_<motion>_<step cycles>``, ``_real`` or ``_both`` for those backends: checkpoint, trace of every evaluation, plots;
 ``motion_studio.tuning``) is checkpointed after each generation; running the same command again resumes from
 it. ``--write`` puts the best parameters into
 ``motions/params/gait.toml`` (section = motion name, with a provenance line and the measured speeds) and
@@ -31,10 +39,11 @@ import numpy as np
 
 from agent.motion import MotionLibrary
 from kinematics.errors import IKError
-from motion_studio.tuning import Parameter, Problem, make_backend
+from motion_studio.tuning import InProcess, Parameter, Problem, make_backend
 from motion_studio.tuning.session import legacy_data, one_line_errors, run_cmaes
 from motion_studio.tuning.params_file import Provenance, write_file
 from motion_studio.tuning.run_folder import default_run_dir
+from motion_studio.realserver.gait_backend import BACKENDS as REAL_BACKENDS
 from motion_studio.walk_rollout import Push, WalkRun, run_walk
 from motions.authoring.gait import GaitParams, build_walk, write_gait_files
 from motions.authoring.gait_params import (GAIT_PARAMS_PATH, dumps_gait_params, load_gait_params, provenance,
@@ -88,6 +97,15 @@ def default_trials(motion: str, quick: bool = False, lean: bool = False) -> tupl
 
 #: Curvature [deg/m] a full lean must reach to earn its whole bonus.
 LEAN_CURVATURE_DEG_M = 20.0
+
+
+def trial_place(trial: Trial, direction: tuple[float, float]) -> dict[str, object]:
+    """Where a trial starts and where its walk is cut (``run_walk``'s ``position_m`` and ``x_limit_m``), the
+    same on both servers: forward walks from the own goal's end (lean trials from x = -8 m) up to x = 14.5 m,
+    the others from the centre."""
+    if direction[0] <= 0:
+        return {"position_m": (0.0, 0.0), "x_limit_m": None}
+    return {"position_m": (-8.0, 0.0) if trial.lean else (-13.5, 0.0), "x_limit_m": 14.5}
 
 
 def trial_score(run: WalkRun, direction: tuple[float, float]) -> dict[str, float]:
@@ -168,10 +186,8 @@ def evaluate(motion: str, params: GaitParams, trials: Sequence[Trial], robust: R
     direction = DIRECTIONS[motion]
     results = []
     for trial in trials:
-        lean_start = (-8.0, 0.0) if trial.lean else (-13.5, 0.0)
         run = run_walk(library, motion, trial.duration_s, pushes=trial.pushes, lean=trial.lean,
-                       x_limit_m=14.5 if direction[0] > 0 else None,
-                       position_m=lean_start if direction[0] > 0 else (0.0, 0.0))
+                       **trial_place(trial, direction))
         results.append(trial_score(run, direction))
     loss = -float(np.mean([r["score"] for r in results]))
     out: dict[str, object] = {"trials": [{k: round(v, 4) for k, v in r.items()} for r in results]}
@@ -205,16 +221,25 @@ def _as_dict(params: GaitParams) -> dict:
 
 def tune(motion: str, base: GaitParams, dimensions: Sequence[Parameter], trials: Sequence[Trial], generations: int,
          checkpoint: Path, workers: int = 1, sigma0: float = 0.15, popsize: int | None = None, seed: int = 0,
-         progress: Callable[[str], None] | None = print, robust: Robust | None = None, bar: bool = False) -> dict:
+         progress: Callable[[str], None] | None = print, robust: Robust | None = None, bar: bool = False,
+         judge: Callable[[GaitParams], dict] | None = None) -> dict:
     """Run (or resume) CMA-ES from ``base`` in the run folder ``checkpoint``; returns ``best`` (lowest loss,
     whole parameters), every ``evaluations`` entry, ``motion`` and ``base``. With ``robust``, every candidate
     plays the same ``robust.count`` transition scripts (the robust seed); :func:`validate` re-ranks the
-    leading candidates on one larger set."""
-    problem = Problem(f"gait:{motion}", tuple(dimensions),
-                      partial(_evaluate_values, motion, _as_dict(base), tuple(trials), robust),
+    leading candidates on one larger set. With ``judge`` (``realserver.gait_backend.RealJudge``: the real
+    server, and ours with ``--backend both``) the candidates are judged by it one after the other in this
+    process instead."""
+    rollouts = len(trials) + (robust.count if robust else 0)
+    if judge is not None:
+        def evaluate_fn(values: dict[str, float]) -> dict[str, object]:
+            return judge(replace(base, **values))
+        rollouts += len(getattr(judge, "trials", ()))
+    else:
+        evaluate_fn = partial(_evaluate_values, motion, _as_dict(base), tuple(trials), robust)
+    problem = Problem(f"gait:{motion}", tuple(dimensions), evaluate_fn,
                       start={d.name: getattr(base, d.name) for d in dimensions}, fail_loss=10.0,
-                      rollouts_per_candidate=len(trials) + (robust.count if robust else 0))
-    backend = make_backend("inprocess", workers)
+                      rollouts_per_candidate=rollouts)
+    backend = InProcess() if judge is not None else make_backend("inprocess", workers)
     try:
         result = run_cmaes(problem, checkpoint, generations, sigma0, popsize, seed, backend, progress, bar)
     finally:
@@ -247,9 +272,10 @@ def validate(data: dict, trials: Sequence[Trial], robust: Robust, top: int = 4,
 
 
 def write_best(motion: str, best: dict, command: str, params_path: Path = GAIT_PARAMS_PATH,
-               common_keys: Sequence[str] = ()) -> list[Path]:
+               common_keys: Sequence[str] = (), note: str = "") -> list[Path]:
     """Put the best parameters into the parameter file (and ``common_keys`` into [common]), with the
-    measured steady speeds of a confirming run, then regenerate the motion files."""
+    measured steady speeds of a confirming run (and ``note``, e.g. the real server's figures) in its
+    provenance, then regenerate the motion files."""
     table = load_gait_params(params_path)
     common = read_common(params_path)
     best_params = _params(best["params"])
@@ -265,7 +291,7 @@ def write_best(motion: str, best: dict, command: str, params_path: Path = GAIT_P
     date = datetime.date.today().isoformat()
     provenances[motion] = Provenance.now(command).text(
         f"loss {best['loss']:.4f}; steady forward {figures['forward_m_s']:.3f} m/s, left {figures['left_m_s']:.3f} m/s "
-        f"over {figures['time_s']:.0f} s, fell {figures['fell']}")
+        f"over {figures['time_s']:.0f} s, fell {figures['fell']}" + (f"; {note}" if note else ""))
     if common_keys:
         provenances["common"] = f"posture keys {', '.join(common_keys)} from the tuned {motion} ({date})"
     text = dumps_gait_params(common, table, provenances, read_header(params_path))
@@ -330,6 +356,25 @@ def measure_type(robot_type: int, names: Sequence[str] | None = None) -> Path:
     return path
 
 
+def _tune_real(args: argparse.Namespace, base: GaitParams, space: Sequence[Parameter], trials: Sequence[Trial],
+               robust: Robust | None, checkpoint: Path, argv: list[str] | None) -> dict:
+    """:func:`tune` judged on the real server (``--backend real``) or on both (``both``): the process re-runs
+    itself inside the real-server scripts' private namespace first, then keeps one real server for the run."""
+    import sys
+
+    from motion_studio.realserver.gait_backend import RealJudge, real_trials
+    from motion_studio.realserver.rollout_kick import ensure_private_network
+    from motion_studio.realserver.rollout_walk import RealWalkBench
+
+    ensure_private_network("motion_studio.tune_gait", list(argv) if argv is not None else sys.argv[1:])
+    with RealWalkBench(args.real_workdir) as bench:
+        judge = RealJudge(bench, args.motion, real_trials(args.motion, args.lean, args.quick),
+                          tuple(trials) if args.backend == "both" else None,
+                          robust if args.backend == "both" else None)
+        return tune(args.motion, base, space, trials, args.generations, checkpoint, 1, args.sigma, args.popsize,
+                    args.seed, robust=robust if args.backend == "both" else None, bar=True, judge=judge)
+
+
 @one_line_errors("motion-studio tune gait")
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="motion-studio tune gait", description=__doc__.split("\n\n")[0],
@@ -354,6 +399,15 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--validate", type=int, default=0, metavar="N",
                         help="before --write: re-rank the leading candidates on N transition trials")
     parser.add_argument("--base-json", type=Path, default=None, help="start from these parameters (JSON object)")
+    parser.add_argument("--start-params", type=Path, default=None,
+                        help="start from the motion's section of this gait parameter file (e.g. "
+                             "motions/params/gait_fast.toml; its [common] posture included)")
+    parser.add_argument("--backend", choices=("mujoco", *REAL_BACKENDS), default="mujoco",
+                        help="where the candidates are judged: our simulator (default), the real rcssserver3d 0.7.3 "
+                             "(motion_studio.realserver.rollout_walk, one walk at a time, the unpushed trials), or "
+                             "both (the mean of the real and our loss)")
+    parser.add_argument("--real-workdir", type=Path, default=Path("out/tune_gait_real"),
+                        help="the real server's log and monitor frames (--backend real|both)")
     parser.add_argument("--write", action="store_true", help="write the best into gait.toml and regenerate")
     parser.add_argument("--common", action="store_true", help="with --write: the posture keys also go to [common]")
     args = parser.parse_args(argv)
@@ -362,18 +416,21 @@ def main(argv: list[str] | None = None) -> int:
         return 0
     if args.motion is None:
         parser.error("a motion is needed unless --measure-type is given")
-    base = load_gait_params()[args.motion]
+    base = load_gait_params(args.start_params or GAIT_PARAMS_PATH)[args.motion]
     if args.base_json:
         base = _params(json.loads(args.base_json.read_text()))
     if args.step_cycles:
         base = replace(base, step_cycles=args.step_cycles)
-    checkpoint = args.checkpoint or default_run_dir(f"gait_{args.motion}_{base.step_cycles}"
-                                                    + ("_robust" if args.robust else ""))
+    suffix = ("_robust" if args.robust else "") + ("" if args.backend == "mujoco" else f"_{args.backend}")
+    checkpoint = args.checkpoint or default_run_dir(f"gait_{args.motion}_{base.step_cycles}{suffix}")
     robust = Robust(count=args.robust, noise_deg=args.noise_deg) if args.robust else None
     space = SPACES[args.motion] + (POSTURE if args.posture else ())
     trials = default_trials(args.motion, args.quick, args.lean)
-    data = tune(args.motion, base, space, trials, args.generations, checkpoint, args.workers, args.sigma,
-                args.popsize, args.seed, robust=robust, bar=True)
+    if args.backend == "mujoco":
+        data = tune(args.motion, base, space, trials, args.generations, checkpoint, args.workers, args.sigma,
+                    args.popsize, args.seed, robust=robust, bar=True)
+    else:
+        data = _tune_real(args, base, space, trials, robust, checkpoint, argv)
     print(f"best loss {data['best']['loss']:.4f}: {data['best']['params']}")
     if args.validate:
         data["best"] = validate(data, trials, Robust(seed=10_000, count=args.validate, noise_deg=args.noise_deg))
@@ -382,9 +439,14 @@ def main(argv: list[str] | None = None) -> int:
         command = (f"motion-studio tune gait {args.motion} --step-cycles {base.step_cycles} "
                    f"--generations {args.generations} --seed {args.seed}" + (" --lean" if args.lean else "")
                    + (f" --robust {args.robust} --noise-deg {args.noise_deg}" if args.robust else "")
-                   + (f" --validate {args.validate}" if args.validate else "") + (" --posture" if args.posture else ""))
+                   + (f" --validate {args.validate}" if args.validate else "") + (" --posture" if args.posture else "")
+                   + (f" --backend {args.backend}" if args.backend != "mujoco" else "")
+                   + (f" --start-params {args.start_params}" if args.start_params else ""))
         keys = [d.name for d in POSTURE] if args.common else []
-        for path in write_best(args.motion, data["best"], command, common_keys=keys):
+        from motion_studio.realserver.gait_backend import real_note
+
+        for path in write_best(args.motion, data["best"], command, common_keys=keys,
+                               note=real_note(data["best"]["result"])):
             print(path)
     return 0
 

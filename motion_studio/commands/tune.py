@@ -22,7 +22,8 @@ TUNERS: dict[str, tuple[str, str]] = {
                                         "trust region (or CMA-ES) on walk rollouts"),
     "turn": ("motion_studio.tune_turn", "turn-gain curve (turn_gain section of dynamic_elements.toml): CasADi/IPOPT "
                                         "trust region (or CMA-ES, or a line fit) on turn rollouts"),
-    "gait": ("motion_studio.tune_gait", "walk gait parameters (motions/params/gait.toml), CMA-ES on walk rollouts"),
+    "gait": ("motion_studio.tune_gait", "walk gait parameters (motions/params/gait.toml), CMA-ES on walk rollouts "
+                                        "(ours, the real server, or both)"),
     "kick": ("motion_studio.tune_kick", "kick parameters (motions/params/kick.toml), CMA-ES on kick rollouts "
                                         "(ours, the real server, or both)"),
     "standup": ("motion_studio.tune_standup", "stand-up parameters (motions/params/standup.toml), CMA-ES on "

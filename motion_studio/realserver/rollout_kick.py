@@ -197,7 +197,8 @@ def parse_truth(frames: Sequence[bytes], workdir: Path) -> dict[int, dict]:
     return out
 
 
-def _truth(sample: dict) -> Truth:
+def sample_truth(sample: dict) -> Truth:
+    """The ``Truth`` of one sample of :func:`parse_truth` (the feet-off-ground flag unknown: False)."""
     return Truth(sample["time_s"], sample["torso"], sample["up_z"], sample["heading_deg"], sample["ball"], False)
 
 
@@ -219,7 +220,7 @@ def measure(samples: dict[int, dict], motion: str, placement: Placement, ball_st
     height = 0.0
     for key in keys:
         now, before = samples[key], samples.get(key - 1)
-        fell = fell or _truth(now).fallen
+        fell = fell or sample_truth(now).fallen
         height = max(height, now["ball"][2] - BALL_Z_M)
         if before is None:
             continue
@@ -237,7 +238,7 @@ def measure(samples: dict[int, dict], motion: str, placement: Placement, ball_st
             ball_speed = ball_v
     end = samples[keys[-1]]
     contact_s = None if contact is None else round(contact * CYCLE_S - kick_start_s, 3)
-    truths = [_truth(samples[k]) for k in keys]
+    truths = [sample_truth(samples[k]) for k in keys]
     return KickRun(motion, placement, ball_start_m, (end["ball"][0], end["ball"][1]), aim_deg, contact_s,
                    motion_s if motion_s is not None else keys[-1] * CYCLE_S - kick_start_s, fell, trapped, height,
                    foot_speed, ball_speed, truths)
@@ -396,7 +397,7 @@ class RealKickBench:
         samples = parse_truth(session.monitor.frames[since:], self.workdir)
         if not samples:
             raise RuntimeError("no full state after the settle")
-        start = _truth(samples[max(samples)])
+        start = sample_truth(samples[max(samples)])
         constants = library.get(motion).constants
         aim = start.heading_deg - placement.heading_deg
         spot = ball_spot(start, float(constants["ball_forward_m"]) + placement.forward_m,
@@ -436,4 +437,4 @@ class RealKickBench:
 
 
 __all__ = ["CycleRecord", "RealKickBench", "RealKickConfig", "RealKickRun", "ensure_private_network",
-           "frame_time_s", "launch", "measure", "parse_truth"]
+           "frame_time_s", "launch", "measure", "parse_truth", "sample_truth"]
