@@ -310,6 +310,25 @@ def robustness(library: MotionLibrary, trials: int, seed: int = 0, *, dynamic: D
     return Robustness(len(chosen), sum(r.fell for r in results), results)
 
 
+def _real_robustness(library: MotionLibrary, trials: int, seed: int, scripts: list[Script] | None, pushes: bool,
+                     lean_change: bool, workdir: str, argv: list[str] | None) -> Robustness:
+    """The scripts :func:`robustness` would play (the same draws), played on the real server instead: the process
+    re-runs itself inside the real-server scripts' private namespace, one server for every trial."""
+    import sys
+    from pathlib import Path
+
+    from motion_studio.realserver.rollout_kick import ensure_private_network
+    from motion_studio.realserver.rollout_walk import RealWalkBench
+
+    ensure_private_network("motion_studio.walk_trials", list(argv) if argv is not None else sys.argv[1:])
+    rng = random.Random(seed)
+    chosen = scripts if scripts is not None else [random_script(rng, library, pushes=pushes, lean_change=lean_change)
+                                                  for _ in range(trials)]
+    with RealWalkBench(Path(workdir)) as bench:
+        results = [bench.script(library, script) for script in chosen]
+    return Robustness(len(chosen), sum(r.fell for r in results), results)
+
+
 def main(argv: list[str] | None = None) -> int:
     """``python -m motion_studio.walk_trials [--trials N] [--seed S]``: falls of the shipped walks in random
     match-like scripts."""
@@ -326,14 +345,22 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--motion", default=None, help="transition trials of this walk (default: match-like mixes)")
     parser.add_argument("--folder", default=None, help="motion folder (default: the shipped motions)")
     parser.add_argument("--verbose", action="store_true")
+    parser.add_argument("--real", action="store_true",
+                        help="play the same scripts on the real rcssserver3d 0.7.3 (type 0, pushes left out; "
+                             "motion_studio.realserver.rollout_walk)")
+    parser.add_argument("--real-workdir", default="out/walk_trials_real", help="the real server's logs (--real)")
     args = parser.parse_args(argv)
     library = default_library(args.robot_type, args.folder)
     scripts = None
     if args.motion:
         rng = random.Random(args.seed)
         scripts = [transition_script(rng, library, args.motion) for _ in range(args.trials)]
-    result = robustness(library, args.trials, args.seed, robot_type=args.robot_type, scripts=scripts,
-                        pushes=not args.no_pushes, lean_change=not args.no_lean)
+    if args.real:
+        result = _real_robustness(library, args.trials, args.seed, scripts, not args.no_pushes, not args.no_lean,
+                                  args.real_workdir, argv)
+    else:
+        result = robustness(library, args.trials, args.seed, robot_type=args.robot_type, scripts=scripts,
+                            pushes=not args.no_pushes, lean_change=not args.no_lean)
     for r in result.results:
         if args.verbose or r.fell:
             print(f"{'FELL' if r.fell else 'ok  '} {r.label:<40} seg {r.fall_segment} {r.fall_motion}/{r.fall_phase} "

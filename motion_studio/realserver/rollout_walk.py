@@ -13,6 +13,10 @@ state); only the rollout differs. A rollout (:meth:`RealWalkBench.walk`):
    duration, cut short once the agent itself has felt fallen for ``FALLEN_CYCLES``;
 3. the stop: no motion requested for ``stop_s`` (the walk leaves through its stop phases).
 
+:meth:`RealWalkBench.script` plays a transition trial of ``motion_studio.walk_trials`` (a ``Script`` of walk, stop,
+turn and stand requests) the same way after the same reset, without its pushes (the trainer cannot push a
+robot), and reports it as ``walk_trials.run_script`` reports ours (:func:`trial_result`).
+
 The figures come from the monitor's truth through :func:`walk_run`, which cuts the run as ``run_walk`` does
 (the first fallen cycle, the torso past ``x_limit_m``), so ``tune_gait.trial_score`` scores both servers alike.
 The real server never runs in tests: :func:`walk_run` is the part they check, on a recorded real walk.
@@ -20,7 +24,8 @@ The real server never runs in tests: :func:`walk_run` is the part they check, on
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+import math
+from collections.abc import Callable, Sequence
 from dataclasses import replace
 from pathlib import Path
 
@@ -29,6 +34,7 @@ from agent.skills.base import PlayMotion
 from motion_studio.realserver.rollout_kick import RealKickBench, RealKickConfig, parse_truth, sample_truth
 from motion_studio.scenarios import Truth
 from motion_studio.walk_rollout import BALL_AWAY_M, WalkRun
+from motion_studio.walk_trials import TILT_UP_Z, Script, ScriptedRequests, TrialResult
 from agent.protocol.constants import CYCLE_S
 
 #: The agent's own fall sense (its up axis below 0.6) this many cycles in a row ends the walk early: the robot
@@ -65,6 +71,35 @@ def walk_run(truths: Sequence[Truth | None], motion: str, lean: float, walk_cycl
     return WalkRun(motion, lean, filled, cycles, fall, heading_deg)
 
 
+def trial_result(label: str, truths: Sequence[Truth | None], phases: Sequence[tuple[int, str | None, str | None]]
+                 ) -> TrialResult:
+    """A transition trial's outcome from its truth per cycle and, per cycle, (the script's segment index, the
+    motion and the phase playing), as ``walk_trials.run_script`` reports ours: the trial ends at the first fallen
+    cycle; a fall is blamed on the segment, motion and phase playing when the torso last tilted past
+    ``TILT_UP_Z`` before it.
+
+    Raises:
+        ValueError: no truth at all.
+    """
+    known = [(i, truth) for i, truth in enumerate(truths) if truth is not None]
+    if not known:
+        raise ValueError("no truth in the trial")
+    fall = next((k for k, (_, truth) in enumerate(known) if truth.fallen), None)
+    kept = known if fall is None else known[:fall + 1]
+    tilt = None
+    for index, truth in kept:
+        if truth.up_z >= TILT_UP_Z:
+            tilt = None
+        elif tilt is None:
+            tilt = index
+    fell = fall is not None
+    blamed = phases[min(tilt, len(phases) - 1)] if fell and tilt is not None and phases else (None, None, None)
+    first, last = kept[0][1], kept[-1][1]
+    return TrialResult(label, fell, last.time_s if fell else None, *blamed,
+                       math.dist(first.torso_m[:2], last.torso_m[:2]), min(t.up_z for _, t in kept),
+                       [t for _, t in kept])
+
+
 class RealWalkBench(RealKickBench):
     """Walk rollouts one after the other on one real server (this namespace); see the module docstring.
 
@@ -91,19 +126,74 @@ class RealWalkBench(RealKickBench):
             RuntimeError: the server stalled twice.
         """
         library.get(motion)
+        return self._retrying(library, position_m, heading_deg, lambda: self._walk(
+            library, motion, duration_s, heading_deg, lean, stop_s, x_limit_m))
+
+    def script(self, library: MotionLibrary, script: Script, *, position_m: tuple[float, float] = (-5.0, 0.0),
+               heading_deg: float = 0.0, settle_s: float = 1.5) -> TrialResult:
+        """One transition trial (``walk_trials.Script``, its pushes left out) from ``position_m``, then nothing
+        requested for ``settle_s``, as ``walk_trials.run_script`` plays it on ours.
+
+        Raises:
+            RuntimeError: the server stalled twice.
+        """
+        return self._retrying(library, position_m, heading_deg,
+                              lambda: self._script(library, script, heading_deg, settle_s))
+
+    def _retrying(self, library: MotionLibrary, position_m: tuple[float, float], heading_deg: float,
+                  rollout: Callable[[], object]):
+        """``rollout()`` from ``position_m`` (the ball parked at BALL_AWAY_M), once more on a fresh server if the
+        server stalls."""
         ball = (BALL_AWAY_M[0] - position_m[0], BALL_AWAY_M[1] - position_m[1])
         self.config = replace(self.config, spot_m=position_m, aim_deg=heading_deg, park_ball_m=ball)
         for attempt in range(2):
             if self.session is None:
                 self._open(library)
             try:
-                return self._walk(library, motion, duration_s, heading_deg, lean, stop_s, x_limit_m)
+                return rollout()
             except (OSError, RuntimeError, ValueError) as error:
                 if attempt:
-                    raise RuntimeError(f"the real server stalled twice in one walk ({error})") from error
+                    raise RuntimeError(f"the real server stalled twice in one rollout ({error})") from error
                 self.close()
                 self.restarts += 1
         raise AssertionError("unreachable")
+
+    def _truths(self, since: int, start_s: float) -> list[Truth | None]:
+        """The truth per cycle from the state the message after ``start_s`` reports up to now (the frames used
+        are dropped)."""
+        session = self.session
+        self._wait_frame(since, session.game_time_s)
+        samples = parse_truth(session.monitor.frames[since:], self.workdir)
+        del session.monitor.frames[:]
+        first = round(start_s / CYCLE_S) + 1
+        last = round(session.game_time_s / CYCLE_S)
+        return [sample_truth(samples[k]) if k in samples else None for k in range(first, last + 1)]
+
+    def _script(self, library: MotionLibrary, script: Script, heading_deg: float, settle_s: float) -> TrialResult:
+        session, behavior = self.session, self.behavior
+        self._reset(library, heading_deg)
+        since = len(session.monitor.frames)
+        session.command("(reqfullstate)")
+        skill = ScriptedRequests(script)
+        behavior.set_skill(skill)
+        body = session.agent.world.body
+        limit = round((script.duration_s + settle_s + 8.0) / CYCLE_S)  # as run_script: turns take their time
+        settle_cycles = round(settle_s / CYCLE_S)
+        phases: list[tuple[int, str | None, str | None]] = []
+        start_s, done_at, fallen = None, None, 0
+        for index in range(limit):
+            session.step()
+            start_s = session.game_time_s if start_s is None else start_s
+            phases.append((skill.index, behavior.motion.motion_name, behavior.motion.phase_name))
+            fallen = fallen + 1 if body.fallen else 0
+            if fallen >= FALLEN_CYCLES:
+                break
+            if skill.done and done_at is None:
+                done_at = index
+            if done_at is not None and index - done_at >= settle_cycles:
+                break
+        # phases[i] played in the cycle whose state truths[i] reports
+        return trial_result(script.label, self._truths(since, start_s), phases)
 
     def _walk(self, library: MotionLibrary, motion: str, duration_s: float, heading_deg: float, lean: float,
               stop_s: float, x_limit_m: float | None) -> WalkRun:
@@ -125,14 +215,8 @@ class RealWalkBench(RealKickBench):
         if fallen < FALLEN_CYCLES:
             behavior.set_skill(None)
             self._steps(round(stop_s / CYCLE_S))
-        self._wait_frame(since, session.game_time_s)
-        samples = parse_truth(session.monitor.frames[since:], self.workdir)
-        del session.monitor.frames[:]
         # the first walking cycle's truth: the state the message after the first walk command reports
-        first = round(start_s / CYCLE_S) + 1
-        last = round(session.game_time_s / CYCLE_S)
-        truths = [sample_truth(samples[k]) if k in samples else None for k in range(first, last + 1)]
-        return walk_run(truths, motion, lean, walk_cycles, heading_deg, x_limit_m)
+        return walk_run(self._truths(since, start_s), motion, lean, walk_cycles, heading_deg, x_limit_m)
 
 
-__all__ = ["FALLEN_CYCLES", "RealWalkBench", "walk_run"]
+__all__ = ["FALLEN_CYCLES", "RealWalkBench", "trial_result", "walk_run"]

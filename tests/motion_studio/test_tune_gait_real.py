@@ -157,3 +157,19 @@ def test_the_real_backend_without_the_scripts_is_one_line(tmp_path, monkeypatch,
     err = capsys.readouterr().err.strip()
     assert code == 2 and len(err.splitlines()) == 1
     assert "no server.sh or netns.sh" in err and not (tmp_path / "run").exists()
+
+
+def test_a_real_transition_trial_is_reported_as_ours():
+    from motion_studio.realserver.rollout_walk import trial_result
+
+    upright = [_truth(0.01 * i) for i in range(20)]
+    tilting = [_truth(0.2, up_z=0.8), _truth(0.2, up_z=0.7), _truth(0.2, z_m=0.2, up_z=0.3), _truth(0.2, up_z=0.1)]
+    phases = [(0, "stand", "hold")] * 10 + [(1, "walk_forward", "cycle_3")] * 10 + [(2, "walk_forward", "stop_1")] * 4
+    result = trial_result("walk_forward:stand", [None] + upright[1:] + tilting, phases)
+    assert result.fell and result.fall_segment == 2 and (result.fall_motion, result.fall_phase) == ("walk_forward",
+                                                                                                     "stop_1")
+    assert len(result.truths) == 22 and result.min_up_z == pytest.approx(0.3)  # ends at the first fallen cycle
+    assert result.distance_m == pytest.approx(0.2 - 0.01)
+    calm = trial_result("walk_forward:turn", upright, phases[:20])
+    assert not calm.fell and calm.fall_segment is None and calm.fall_time_s is None
+    assert calm.distance_m == pytest.approx(0.19) and calm.min_up_z == pytest.approx(0.97)
