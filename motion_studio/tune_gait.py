@@ -356,6 +356,29 @@ def measure_type(robot_type: int, names: Sequence[str] | None = None) -> Path:
     return path
 
 
+def bounded(space: Sequence[Parameter], bounds: Sequence[str]) -> tuple[Parameter, ...]:
+    """``space`` with the bounds of ``NAME=LOW:HIGH`` items replaced (a search kept to part of the space, e.g.
+    only steps long enough for a faster walk).
+
+    Raises:
+        TuningError: a malformed item or a name not in the space (the message lists the names).
+    """
+    from motion_studio.tuning.errors import TuningError
+
+    out = {parameter.name: parameter for parameter in space}
+    for item in bounds:
+        name, _, low_high = item.partition("=")
+        low, _, high = low_high.partition(":")
+        if name not in out:
+            raise TuningError(f"--bound {item!r}: unknown parameter {name!r}; known: {', '.join(out)}")
+        try:
+            low_value, high_value = float(low), float(high)
+        except ValueError:
+            raise TuningError(f"--bound {item!r}: expected NAME=LOW:HIGH with numbers") from None
+        out[name] = replace(out[name], low=low_value, high=high_value)  # a TuningError if low > high
+    return tuple(out.values())
+
+
 def _tune_real(args: argparse.Namespace, base: GaitParams, space: Sequence[Parameter], trials: Sequence[Trial],
                robust: Robust | None, checkpoint: Path, argv: list[str] | None) -> dict:
     """:func:`tune` judged on the real server (``--backend real``) or on both (``both``): the process re-runs
@@ -396,6 +419,9 @@ def main(argv: list[str] | None = None) -> int:
                         help="add N random transition trials per candidate (motion_studio.walk_trials)")
     parser.add_argument("--noise-deg", type=float, default=0.4, help="keyframe noise of half the robust trials")
     parser.add_argument("--posture", action="store_true", help="also search the posture (the shared stance)")
+    parser.add_argument("--bound", action="append", default=[], metavar="NAME=LOW:HIGH",
+                        help="narrow a searched parameter's bounds (e.g. step_length_m=0.072:0.09: only faster "
+                             "gaits); repeatable")
     parser.add_argument("--validate", type=int, default=0, metavar="N",
                         help="before --write: re-rank the leading candidates on N transition trials")
     parser.add_argument("--base-json", type=Path, default=None, help="start from these parameters (JSON object)")
@@ -424,7 +450,7 @@ def main(argv: list[str] | None = None) -> int:
     suffix = ("_robust" if args.robust else "") + ("" if args.backend == "mujoco" else f"_{args.backend}")
     checkpoint = args.checkpoint or default_run_dir(f"gait_{args.motion}_{base.step_cycles}{suffix}")
     robust = Robust(count=args.robust, noise_deg=args.noise_deg) if args.robust else None
-    space = SPACES[args.motion] + (POSTURE if args.posture else ())
+    space = bounded(SPACES[args.motion] + (POSTURE if args.posture else ()), args.bound)
     trials = default_trials(args.motion, args.quick, args.lean)
     if args.backend == "mujoco":
         data = tune(args.motion, base, space, trials, args.generations, checkpoint, args.workers, args.sigma,
@@ -441,7 +467,8 @@ def main(argv: list[str] | None = None) -> int:
                    + (f" --robust {args.robust} --noise-deg {args.noise_deg}" if args.robust else "")
                    + (f" --validate {args.validate}" if args.validate else "") + (" --posture" if args.posture else "")
                    + (f" --backend {args.backend}" if args.backend != "mujoco" else "")
-                   + (f" --start-params {args.start_params}" if args.start_params else ""))
+                   + (f" --start-params {args.start_params}" if args.start_params else "")
+                   + "".join(f" --bound {item}" for item in args.bound))
         keys = [d.name for d in POSTURE] if args.common else []
         from motion_studio.realserver.gait_backend import real_note
 

@@ -173,3 +173,15 @@ def test_a_real_transition_trial_is_reported_as_ours():
     calm = trial_result("walk_forward:turn", upright, phases[:20])
     assert not calm.fell and calm.fall_segment is None and calm.fall_time_s is None
     assert calm.distance_m == pytest.approx(0.19) and calm.min_up_z == pytest.approx(0.97)
+
+
+def test_bounds_narrow_the_search_and_bad_ones_are_errors():
+    from motion_studio.tuning.errors import TuningError
+
+    space = tune_gait.bounded(tune_gait.SPACES["walk_forward"], ["step_length_m=0.072:0.09"])
+    step = next(d for d in space if d.name == "step_length_m")
+    assert (step.low, step.high) == (0.072, 0.09) and len(space) == len(tune_gait.SPACES["walk_forward"])
+    for item, message in (("foo=1:2", "unknown parameter 'foo'"), ("step_length_m=a:b", "NAME=LOW:HIGH"),
+                          ("step_length_m=0.09:0.07", "lower bound")):
+        with pytest.raises(TuningError, match=message):
+            tune_gait.bounded(tune_gait.SPACES["walk_forward"], [item])
