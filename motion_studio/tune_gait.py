@@ -110,12 +110,14 @@ def trial_place(trial: Trial, direction: tuple[float, float]) -> dict[str, objec
 
 def trial_score(run: WalkRun, direction: tuple[float, float]) -> dict[str, float]:
     """Figures and the score of one trial (higher is better); a lean trial earns a bonus for curving its
-    way (capped) instead of paying for the heading change."""
+    way (capped) instead of paying for the heading change, and its speed is along its path: credited with the
+    way along the start heading, a walk that ignored the lean scored as well as one that curved at the cap (the
+    real-server runs of 2026-11-26 found such unsteerable walks best)."""
     forward, left = run.displacement_m()
     along = forward * direction[0] + left * direction[1]
     across = abs(-forward * direction[1] + left * direction[0])
     time_s = run.walk_time_s if not run.fell else max(run.walk_time_s, 10.0)
-    score = along / time_s
+    score = (run.path_length_m(run.walk_cycles) if run.lean else along) / time_s
     if run.fell:
         score -= 2.0 / time_s + 0.5
     if run.fell_stopping:
@@ -125,8 +127,11 @@ def trial_score(run: WalkRun, direction: tuple[float, float]) -> dict[str, float
         score += 0.02 * max(-LEAN_CURVATURE_DEG_M, min(LEAN_CURVATURE_DEG_M, curving))
     else:
         score -= 0.3 * across / max(time_s, 1.0) + 0.002 * abs(run.heading_change_deg)
-    return {"score": score, "along_m": along, "across_m": across, "time_s": run.walk_time_s, "fell": float(run.fell),
-            "fell_stopping": float(run.fell_stopping), "heading_deg": run.heading_change_deg}
+    figures = {"score": score, "along_m": along, "across_m": across, "time_s": run.walk_time_s, "fell": float(run.fell),
+               "fell_stopping": float(run.fell_stopping), "heading_deg": run.heading_change_deg}
+    if run.lean:
+        figures["curvature_deg_m"] = run.curvature_deg_m
+    return figures
 
 
 @dataclass(frozen=True)

@@ -185,3 +185,21 @@ def test_bounds_narrow_the_search_and_bad_ones_are_errors():
                           ("step_length_m=0.09:0.07", "lower bound")):
         with pytest.raises(TuningError, match=message):
             tune_gait.bounded(tune_gait.SPACES["walk_forward"], [item])
+
+
+def test_a_lean_trial_credits_its_path_and_its_curving_not_the_way_ahead():
+    """Two lean trials at the same pace along their paths: the one that curves its way scores the bonus on top;
+    the way along the start heading (shorter for the curving one) does not count."""
+    def lean_run(curve_deg_per_cycle: float) -> object:
+        truths, x, y, heading = [], 0.0, 0.0, 0.0
+        for _ in range(500):
+            truths.append(_truth(x, y_m=y, heading_deg=heading))
+            heading += curve_deg_per_cycle
+            x, y = x + 0.012 * math.cos(math.radians(heading)), y + 0.012 * math.sin(math.radians(heading))
+        return walk_run(truths, "walk_forward", 1.0, 500, 0.0, None)
+
+    straight, curving = lean_run(0.0), lean_run(0.2)
+    a, b = tune_gait.trial_score(straight, (1.0, 0.0)), tune_gait.trial_score(curving, (1.0, 0.0))
+    assert a["score"] == pytest.approx(0.6, abs=0.02) and a["curvature_deg_m"] == pytest.approx(0.0)
+    assert b["along_m"] < a["along_m"] - 0.5 and b["curvature_deg_m"] == pytest.approx(17.0, abs=0.5)
+    assert b["score"] == pytest.approx(0.6 + 0.02 * b["curvature_deg_m"], abs=0.02)
