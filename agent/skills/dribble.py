@@ -66,10 +66,22 @@ class DribbleConfig:
     """Pushing goes on while the ball lies within this of the robot's walking line (ego left) [m]..."""
     push_max_deg: float = 35.0
     """... and the robot's heading is within this of the ball -> target direction [deg]."""
+    push_line_deg: float = 25.0
+    """Pushing starts only when the line robot -> ball points within this of the ball -> target direction
+    [deg]: the robot walks at the ball, so the ball leaves along that line, whatever the heading (the approach
+    point ``push_start_m`` behind the ball let a robot 0.33 m off the line start a push 30-50 deg aside)..."""
+    push_line_goal_deg: float = 10.0
+    """... and within this once the ball is ``goal_zone_m`` from the target [deg]: on the real server a push
+    started 22 deg off, 1.7 m before a keeper that only stands, put the ball at its feet for 35 s."""
+    goal_zone_m: float = 4.0
+    """The ball this near the target counts as near the goal (the tighter push and keep limits) [m]."""
     keep_across_m: float = 0.35
     """Pushing goes on while the robot stays within this of the target line [m]..."""
     keep_lateral_m: float = 0.2
     """... the ball within this of its walking line [m]..."""
+    keep_across_goal_m: float = 0.15
+    """... within this once the ball is ``goal_zone_m`` from the target [m] (with 0.35 m pushes toward an aim
+    beside the keeper went on 0.3 m off their line and over the goal line beside the post)..."""
     keep_ahead_m: float = 1.5
     """... at most this far ahead (a pushed ball rolls on; the robot follows it) [m]..."""
     keep_max_deg: float = 50.0
@@ -311,11 +323,13 @@ class Dribble(Skill):
         ball_forward = (ball[0] - x_m) * ch + (ball[1] - y_m) * sh
         distance = math.hypot(rx, ry)
         avoid = distance > c.avoid_beyond_m
+        near_goal = math.hypot(tx - ball[0], ty - ball[1]) <= c.goal_zone_m
         if self.pushing:
             # Hysteresis: walk on through the ball while it stays roughly in front, even when it rolled
             # ahead (switching between pushing and the approach point swung the aim and turned the robot
             # back and forth beside the ball).
-            self.pushing = (along < c.behind_min_m and abs(across) <= c.keep_across_m
+            self.pushing = (along < c.behind_min_m
+                            and abs(across) <= (c.keep_across_goal_m if near_goal else c.keep_across_m)
                             and abs(ball_left) <= c.keep_lateral_m and -0.02 < ball_forward <= c.keep_ahead_m
                             and heading_error <= c.keep_max_deg)
             if self.pushing:
@@ -325,8 +339,10 @@ class Dribble(Skill):
             # farther the robot is off that line, so the walk curves into the line and then through the
             # ball (a vector field; a fixed approach point made the walk overshoot onto the ball).
             back = min(c.behind_max_m, c.behind_per_m * abs(across))
+            line_deg = math.degrees(math.atan2(abs(across), -along))
             self.pushing = (back <= c.push_start_m and abs(ball_left) <= c.push_lateral_m and ball_forward > 0.0
-                            and heading_error <= c.push_max_deg)
+                            and heading_error <= c.push_max_deg
+                            and line_deg <= (c.push_line_goal_deg if near_goal else c.push_line_deg))
             if self.pushing:
                 return self._push_point(ball), False
             return (ball[0] - back * ux, ball[1] - back * uy), avoid

@@ -13,9 +13,10 @@ import math
 from agent.world_model import WorldModel
 
 #: Opponent goal line x [m] and the aim points across its mouth (y) [m]: inside the posts (±1.05) by a ball
-#: and a margin for the kick's or the push's direction error, tried from the centre outward.
+#: and a margin for the kick's or the push's direction error, tried from the centre outward. (With ±0.6 and
+#: ±0.85, 9 of 27 real attacks that reached x = 12 m rolled out beside the post: a goal kick, 15 s lost.)
 GOAL_LINE_X_M = 15.0
-AIM_YS_M = (0.0, -0.6, 0.6, -0.85, 0.85)
+AIM_YS_M = (0.0, -0.45, 0.45, -0.65, 0.65)
 #: An aim is taken when its path from the ball passes this far from every opponent [m] (a ball, a keeper's
 #: feet either side of its centre and the push's direction error).
 CLEAR_M = 0.4

@@ -26,7 +26,7 @@ from agent.skills.base import PlayMotion, Skill
 from agent.skills.behavior import SkillBehavior
 from agent.skills.dribble import Dribble
 from agent.skills.kick import KickToward
-from agent.skills.kick_lineup import STEP_FORWARD
+from agent.skills.kick_lineup import STEP_FORWARD, STEP_LEFT, STEP_RIGHT
 from agent.skills.turn import TurnToFace
 from agent.skills.walk import STAND, WalkTo
 from agent.skills.walk_ball import WalkToBall
@@ -72,6 +72,12 @@ SET_PIECE_CLEARANCE_M = 2.2
 #: cost 10-11 s from the drop ball to the first push against robots that only stand: a turn, a walk round the
 #: ball, another turn, and both field players went for it (equal distances).
 RESTART_BEHIND_M = 2.3
+#: At the own kick-off the second attacker waits here [m] (team frame; own half, on its beam spot's side):
+#: the kick-off flies about 4 m straight ahead and the taker may not touch the ball again, so this player goes
+#: for it next. Its usual spot (2.5 m behind the ball, across from the taker) sent it from its beam spot
+#: (-2.2, 1.2) across to (-2.5, -1.5) on the real server, turned sideways, and from there it reached the ball
+#: 12 s after the kick (on ours, seeds 0-5: 12.6 s from PlayOn to this player at the ball; 11.5 s from here).
+KICK_OFF_FOLLOW_SPOT_M = (-1.0, 0.9)
 
 
 class SoccerBehavior:
@@ -141,7 +147,10 @@ class SoccerBehavior:
             return
         self.role = "support"
         holder = next(((p.x_m, p.y_m) for p in players if p.unum == self.holder), None)
-        if roles.second_attacker(players, self.holder) == world.unum:
+        if roles.second_attacker(players, self.holder) == world.unum and set_piece is True \
+                and game.play_mode.startswith("KickOff_"):
+            spot = KICK_OFF_FOLLOW_SPOT_M
+        elif roles.second_attacker(players, self.holder) == world.unum:
             self._second_side = roles.second_attacker_side(ball, holder, self._second_side)
             spot = roles.second_attacker_spot(ball, holder, self._second_side)
         else:
@@ -229,9 +238,12 @@ class SoccerBehavior:
             move = set_piece_move((seen.forward_m, seen.left_m or 0.0), float(spot.get("ball_forward_m", 0.125)),
                                   float(spot.get("ball_left_m", 0.0)),
                                   steps if STEP_FORWARD in self.motion.library else SET_PIECE_MAX_STEPS)
+            step = {"step": STEP_FORWARD, "step_left": STEP_LEFT, "step_right": STEP_RIGHT}.get(move or "")
+            if step is not None and step not in self.motion.library:
+                move = None
             if move is not None and self._facing(world, aim, SET_PIECE_AIM_DEG):
-                if move == "step":
-                    self._use(("set_piece_step", steps + 1), lambda: PlayMotion(STEP_FORWARD))
+                if step is not None:
+                    self._use(("set_piece_step", steps + 1), lambda: PlayMotion(step))
                 else:
                     self._use(("set_piece_kick",), lambda: PlayMotion(KICK))
                 return
