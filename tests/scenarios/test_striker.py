@@ -20,6 +20,26 @@ def _one_striker(seed: int, robot_m: tuple[float, float], ball_m: tuple[float, f
     return engine, host
 
 
+def _our_kick_off_against_standing_robots(within_s: float) -> tuple[SimEngine, InProcessHost, dict]:
+    """3 v 3 of our agents (types 0, 2, 4) against robots that only stand, seed 0: our kick-off, played until
+    PlayOn or ``within_s`` of game time; returns the engine, the host and the robot keys by (team, unum)."""
+    engine = SimEngine(seed=0)
+    host = InProcessHost(engine)
+    factory = SideAgents("ours", "standing")
+    keys = {}
+    for unum in range(1, 4):
+        for team in ("Left", "Right"):
+            keys[team, unum] = host.add(factory(team, unum, (0, 2, 4)[unum - 1]))
+            host.run(2)
+    host.run(100)
+    engine.referee.kick_off("Left")
+    for _ in range(round(within_s / CYCLE_S)):
+        host.run(1)
+        if engine.referee.play_mode == "PlayOn":
+            break
+    return engine, host, keys
+
+
 @pytest.mark.parametrize("seed", [0, 1])
 def test_a_striker_alone_scores_on_an_empty_goal_within_40_s(seed):
     """Ball 4 m before the goal, the striker 1.5 m behind it: it dribbles the ball over the line."""
@@ -37,19 +57,7 @@ def test_the_kick_off_is_played_within_8_s():
     2: before its ankle pitch was capped at type 0's speed (``agent.motion.controller``) this kick grazed the
     ball (0.24 m), now 0.77 m. Over kick-off seeds 0-7 (/work/su/kickoff.py) the ball lies 2.70 m out 3 s after
     PlayOn on average (2.88 m before): the set-piece window still lets some kicks graze it (issue 15)."""
-    engine = SimEngine(seed=0)
-    host = InProcessHost(engine)
-    factory = SideAgents("ours", "standing")
-    for unum in range(1, 4):
-        for team in ("Left", "Right"):
-            host.add(factory(team, unum, (0, 2, 4)[unum - 1]))
-            host.run(2)
-    host.run(100)
-    engine.referee.kick_off("Left")
-    for _ in range(round(8.0 / CYCLE_S)):
-        host.run(1)
-        if engine.referee.play_mode == "PlayOn":
-            break
+    engine, host, _ = _our_kick_off_against_standing_robots(8.0)
     host.run(50)
     x, y, _ = engine.world.ball_position()
     assert engine.referee.play_mode == "PlayOn"
@@ -67,21 +75,7 @@ def test_at_our_kick_off_the_second_attacker_waits_near_the_centre_to_go_for_the
 
     from agent.team.soccer_behavior import KICK_OFF_FOLLOW_SPOT_M
 
-    engine = SimEngine(seed=0)
-    host = InProcessHost(engine)
-    factory = SideAgents("ours", "standing")
-    keys = {}
-    for unum in range(1, 4):
-        for team in ("Left", "Right"):
-            key = host.add(factory(team, unum, (0, 2, 4)[unum - 1]))
-            keys[team, unum] = key
-            host.run(2)
-    host.run(100)
-    engine.referee.kick_off("Left")
-    for _ in range(round(15.0 / CYCLE_S)):
-        host.run(1)
-        if engine.referee.play_mode == "PlayOn":
-            break
+    engine, _, keys = _our_kick_off_against_standing_robots(15.0)
     assert engine.referee.play_mode == "PlayOn"
     x, y, _ = engine.world.torso_position(keys["Left", 3])
     assert x < 0.0 and math.dist((x, y), KICK_OFF_FOLLOW_SPOT_M) < 0.6, (x, y)
