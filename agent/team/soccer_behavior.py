@@ -147,10 +147,10 @@ class SoccerBehavior:
             return
         self.role = "support"
         holder = next(((p.x_m, p.y_m) for p in players if p.unum == self.holder), None)
-        if roles.second_attacker(players, self.holder) == world.unum and set_piece is True \
-                and game.play_mode.startswith("KickOff_"):
+        second_attacker = roles.second_attacker(players, self.holder) == world.unum
+        if second_attacker and set_piece is True and game.play_mode.startswith("KickOff_"):
             spot = KICK_OFF_FOLLOW_SPOT_M
-        elif roles.second_attacker(players, self.holder) == world.unum:
+        elif second_attacker:
             self._second_side = roles.second_attacker_side(ball, holder, self._second_side)
             spot = roles.second_attacker_spot(ball, holder, self._second_side)
         else:
