@@ -7,7 +7,8 @@ private network namespace; the agents run in this process, one thread each, thro
 ``agent.player`` and the robot types of ``--type auto`` (``agent.team.composition``). They connect one after
 another (left 1, right 1, left 2, ...; robots built in the same cycle knock each other over), wait
 KICK_OFF_WAIT_S of server time in BeforeKickOff, then the monitor sends ``(kickOff <side>)`` (REFERENCE §5.2)
-and the game runs for the match's duration of game time; the first agent stops answering then, so the match
+and the game runs for the match's duration of game time (at half time the other side kicks off the second
+half the same way, ``second_half_kick_off``); the first agent stops answering then, so the match
 ends on that cycle. Our match: ``sim.match.run_match`` with the same players, types, duration and the agents of
 ``motion_studio.match_agents.make_agent`` (its coin toss picks the kicking side; the real match then kicks off
 with the same side). Each agent is wrapped (``Watched``) to count its exceptions (answered with ``(syn)``, as
@@ -159,6 +160,17 @@ class MatchSetup:
     """The right team's kind."""
 
 
+def second_half_kick_off(play_mode: str, game_time_s: float, first_kick_off: str, waited_cycles: int) -> str | None:
+    """The side to send ``(kickOff <side>)`` for now, or None. Why: at half time (300 s) the real server goes back
+    to BeforeKickOff and waits for the monitor, as for the first kick-off; without it a 600 s match stood still
+    there for good (2026-11-26: 22 robots in BeforeKickOff from game time 300 s on). With 0.7.3's
+    ``ChangeSidesInSecondHalf`` false (naosoccersim.rb) the other team kicks off the second half
+    (gamestateaspect.cpp), after ``KICK_OFF_WAIT_S`` as the first one."""
+    if play_mode != "BeforeKickOff" or game_time_s <= 0.0 or waited_cycles < round(KICK_OFF_WAIT_S / CYCLE_S):
+        return None
+    return "Right" if first_kick_off == "Left" else "Left"
+
+
 def lineup(setup: MatchSetup) -> list[tuple[str, int, int]]:
     """(team, unum, robot type) in connection order, the types of ``python -m agent --type auto`` (or
     ``setup.types``)."""
@@ -266,10 +278,18 @@ def run_real(setup: MatchSetup, kick_off: str, scripts: Path, out: Path) -> Play
         monitor.send(f"(kickOff {kick_off})")
         wall_limit = time.monotonic() + max(600.0, 30.0 * duration_s)
         last_cycles, last_change = -1, time.monotonic()
+        half_time_since: int | None = None  # clock cycle the second half's BeforeKickOff was first seen
         while time.monotonic() < wall_limit:
             game = clock.world.game
             if game.game_time_s >= duration_s or game.play_mode == "GameOver":
                 break
+            if half_time_since is None and game.play_mode == "BeforeKickOff" and game.game_time_s > 0.0:
+                half_time_since = clock.cycles
+            side = (second_half_kick_off(game.play_mode, game.game_time_s, kick_off, clock.cycles - half_time_since)
+                    if half_time_since is not None and "second half" not in notes else None)
+            if side is not None:
+                monitor.send(f"(kickOff {side})")
+                notes["second half"] = f"(kickOff {side}) at game time {game.game_time_s:.2f}"
             if clock.cycles != last_cycles:
                 last_cycles, last_change = clock.cycles, time.monotonic()
             elif time.monotonic() - last_change > 20.0:
