@@ -123,15 +123,12 @@ def set_piece_move(ball_ego: tuple[float, float], spot_forward_m: float, spot_le
     ``SET_PIECE_SIDE_STEP_REACH_M`` and not short of the spot (nearer, a sideways step pushes the ball away);
     steps only while fewer than ``SET_PIECE_MAX_STEPS`` were taken; None otherwise (line up again)."""
     forward, left = ball_ego[0] - spot_forward_m, ball_ego[1] - spot_left_m
-    if not SET_PIECE_FORWARD_MIN_M <= forward <= SET_PIECE_FORWARD_MAX_M:
-        return None
-    if abs(left) > SET_PIECE_LATERAL_M:
-        if abs(left) <= SET_PIECE_SIDE_STEP_REACH_M and forward >= 0.0 and steps_taken < SET_PIECE_MAX_STEPS:
-            return "step_left" if left > 0.0 else "step_right"
-        return None
-    if forward > SET_PIECE_STEP_BEYOND_M and steps_taken < SET_PIECE_MAX_STEPS:
-        return "step"
-    return "kick"
+    if kick_window(ball_ego, spot_forward_m, spot_left_m):
+        return "step" if forward > SET_PIECE_STEP_BEYOND_M and steps_taken < SET_PIECE_MAX_STEPS else "kick"
+    if (0.0 <= forward <= SET_PIECE_FORWARD_MAX_M and abs(left) <= SET_PIECE_SIDE_STEP_REACH_M
+            and steps_taken < SET_PIECE_MAX_STEPS):
+        return "step_left" if left > 0.0 else "step_right"  # beside the window (outside it, so |left| > its width)
+    return None
 
 
 __all__ = ["SET_PIECE_MAX_STEPS", "SET_PIECE_SIDE_STEP_REACH_M", "SET_PIECE_STEP_BEYOND_M", "TAKER_WAIT_S",
