@@ -95,6 +95,9 @@ def default_trials(motion: str, quick: bool = False, lean: bool = False) -> tupl
     return trials
 
 
+#: Loss of a candidate whose keyframes are out of reach or whose evaluation failed (a walk that falls at once
+#: has a loss of about 0.7, so this ranks below any walk).
+FAIL_LOSS = 10.0
 #: Curvature [deg/m] a full lean must reach to earn its whole bonus.
 LEAN_CURVATURE_DEG_M = 20.0
 
@@ -187,7 +190,7 @@ def evaluate(motion: str, params: GaitParams, trials: Sequence[Trial], robust: R
     try:
         library = candidate_library(motion, params)
     except IKError as error:
-        return {"loss": 10.0, "error": str(error)[:200], "trials": []}
+        return {"loss": FAIL_LOSS, "error": str(error)[:200], "trials": []}
     direction = DIRECTIONS[motion]
     results = []
     for trial in trials:
@@ -242,7 +245,7 @@ def tune(motion: str, base: GaitParams, dimensions: Sequence[Parameter], trials:
     else:
         evaluate_fn = partial(_evaluate_values, motion, _as_dict(base), tuple(trials), robust)
     problem = Problem(f"gait:{motion}", tuple(dimensions), evaluate_fn,
-                      start={d.name: getattr(base, d.name) for d in dimensions}, fail_loss=10.0,
+                      start={d.name: getattr(base, d.name) for d in dimensions}, fail_loss=FAIL_LOSS,
                       rollouts_per_candidate=rollouts)
     backend = InProcess() if judge is not None else make_backend("inprocess", workers)
     try:
@@ -399,8 +402,9 @@ def _tune_real(args: argparse.Namespace, base: GaitParams, space: Sequence[Param
         judge = RealJudge(bench, args.motion, real_trials(args.motion, args.lean, args.quick),
                           tuple(trials) if args.backend == "both" else None,
                           robust if args.backend == "both" else None)
-        return tune(args.motion, base, space, trials, args.generations, checkpoint, 1, args.sigma, args.popsize,
-                    args.seed, robust=robust if args.backend == "both" else None, bar=True, judge=judge)
+        # ours plays (and counts as rollouts) only with "both"
+        return tune(args.motion, base, space, judge.ours_trials or (), args.generations, checkpoint, 1, args.sigma,
+                    args.popsize, args.seed, robust=judge.robust, bar=True, judge=judge)
 
 
 @one_line_errors("motion-studio tune gait")

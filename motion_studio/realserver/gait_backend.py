@@ -22,8 +22,6 @@ from motions.authoring.gait import GaitParams
 
 #: Backends of the gait tuner besides the default in-process MuJoCo one.
 BACKENDS = ("real", "both")
-#: Loss of a candidate whose keyframes are out of reach (as ``tune_gait.evaluate``'s).
-IK_FAIL_LOSS = 10.0
 
 
 def real_trials(motion: str, lean: bool, quick: bool = False) -> tuple:
@@ -64,12 +62,13 @@ class RealJudge:
 
     def __call__(self, params: GaitParams) -> dict[str, object]:
         """Loss and figures of one candidate: ``real`` (trials, loss) and with ours ``ours`` (its evaluation)."""
-        from motion_studio.tune_gait import DIRECTIONS, candidate_library, evaluate, trial_place, trial_score
+        from motion_studio.tune_gait import (DIRECTIONS, FAIL_LOSS, candidate_library, evaluate, trial_place,
+                                             trial_score)
 
         try:
             library = candidate_library(self.motion, params)
         except IKError as error:
-            return {"loss": IK_FAIL_LOSS, "error": str(error)[:200], "trials": []}
+            return {"loss": FAIL_LOSS, "error": str(error)[:200], "trials": []}
         direction = DIRECTIONS[self.motion]
         scores = []
         for trial in self.trials:
@@ -96,4 +95,4 @@ def real_note(result: dict) -> str:
     return "real rcssserver3d 0.7.3 trials: " + ", ".join(parts) if parts else ""
 
 
-__all__ = ["BACKENDS", "IK_FAIL_LOSS", "RealJudge", "combined_loss", "real_loss", "real_note", "real_trials"]
+__all__ = ["BACKENDS", "RealJudge", "combined_loss", "real_loss", "real_note", "real_trials"]

@@ -127,7 +127,7 @@ def test_a_candidate_out_of_reach_is_a_large_loss_without_a_walk(recorded, monke
     monkeypatch.setattr(tune_gait, "candidate_library", unreachable)
     bench = StandInBench(recorded)
     result = RealJudge(bench, "walk_forward", (tune_gait.Trial(10.0),))(load_gait_params()["walk_forward"])
-    assert result["loss"] == gait_backend.IK_FAIL_LOSS and not bench.calls
+    assert result["loss"] == tune_gait.FAIL_LOSS and not bench.calls
 
 
 def test_tuning_with_a_judge_checkpoints_and_resumes(recorded, tmp_path):
