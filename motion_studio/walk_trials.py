@@ -140,29 +140,50 @@ def run_script(library: MotionLibrary, script: Script, *, dynamic: DynamicParams
                         recover_falls=False, seed=seed, robot_type=robot_type, ball_m=BALL_AWAY_M)
     pending = sorted(script.pushes, key=lambda p: p.time_s)
     truths: list[Truth] = []
-    tilt: tuple[int | None, str | None, str | None] = (None, None, None)
+    phases: list[tuple[int, str | None, str | None]] = []
     limit = int(round((script.duration_s + settle_s + 8.0) / CYCLE_S))  # turns have no duration of their own
     settle_cycles = int(round(settle_s / CYCLE_S))
     done_at: int | None = None
     for index in range(limit):
         apply_due_pushes(scenario, pending, index * CYCLE_S)
-        truth = scenario.run(1)[0]
-        truths.append(truth)
-        if truth.up_z >= TILT_UP_Z:
-            tilt = (None, None, None)
-        elif tilt[0] is None:
-            tilt = (skill.index, controller.motion_name, controller.phase_name)
-        if truth.fallen:
+        truths.append(scenario.run(1)[0])
+        phases.append((skill.index, controller.motion_name, controller.phase_name))
+        if truths[-1].fallen:
             break
         if skill.done and done_at is None:
             done_at = index
         if done_at is not None and index - done_at >= settle_cycles:
             break
-    fell = truths[-1].fallen
-    start, end = truths[0].torso_m, truths[-1].torso_m
-    return TrialResult(script.label, fell, truths[-1].time_s if fell else None, tilt[0] if fell else None,
-                       tilt[1] if fell else None, tilt[2] if fell else None,
-                       math.dist(start[:2], end[:2]), min(t.up_z for t in truths), truths)
+    return trial_result(script.label, truths, phases)
+
+
+def trial_result(label: str, truths: Sequence[Truth | None], phases: Sequence[tuple[int, str | None, str | None]]
+                 ) -> TrialResult:
+    """A transition trial's outcome from its truth per cycle and, per cycle, (the script's segment index, the
+    motion and the phase playing), as :func:`run_script` reports ours (and ``realserver.rollout_walk`` the real server's): the trial ends at the first fallen
+    cycle; a fall is blamed on the segment, motion and phase playing when the torso last tilted past
+    ``TILT_UP_Z`` before it.
+
+    Raises:
+        ValueError: no truth at all.
+    """
+    known = [(i, truth) for i, truth in enumerate(truths) if truth is not None]
+    if not known:
+        raise ValueError("no truth in the trial")
+    fall = next((k for k, (_, truth) in enumerate(known) if truth.fallen), None)
+    kept = known if fall is None else known[:fall + 1]
+    tilt = None
+    for index, truth in kept:
+        if truth.up_z >= TILT_UP_Z:
+            tilt = None
+        elif tilt is None:
+            tilt = index
+    fell = fall is not None
+    blamed = phases[min(tilt, len(phases) - 1)] if fell and tilt is not None and phases else (None, None, None)
+    first, last = kept[0][1], kept[-1][1]
+    return TrialResult(label, fell, last.time_s if fell else None, *blamed,
+                       math.dist(first.torso_m[:2], last.torso_m[:2]), min(t.up_z for _, t in kept),
+                       [t for _, t in kept])
 
 
 def _walk_segment(rng: random.Random, low_s: float, high_s: float, lean_change: bool) -> list[Segment]:

@@ -15,7 +15,7 @@ state); only the rollout differs. A rollout (:meth:`RealWalkBench.walk`):
 
 :meth:`RealWalkBench.script` plays a transition trial of ``motion_studio.walk_trials`` (a ``Script`` of walk, stop,
 turn and stand requests) the same way after the same reset, without its pushes (the trainer cannot push a
-robot), and reports it as ``walk_trials.run_script`` reports ours (:func:`trial_result`).
+robot), and reports it as ``walk_trials.run_script`` reports ours (``walk_trials.trial_result``, shared).
 
 The figures come from the monitor's truth through :func:`walk_run`, which cuts the run as ``run_walk`` does
 (the first fallen cycle, the torso past ``x_limit_m``), so ``tune_gait.trial_score`` scores both servers alike.
@@ -24,7 +24,6 @@ The real server never runs in tests: :func:`walk_run` is the part they check, on
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable, Sequence
 from dataclasses import replace
 from pathlib import Path
@@ -34,7 +33,7 @@ from agent.skills.base import PlayMotion
 from motion_studio.realserver.rollout_kick import RealKickBench, RealKickConfig, parse_truth, sample_truth
 from motion_studio.scenarios import Truth
 from motion_studio.walk_rollout import BALL_AWAY_M, WalkRun
-from motion_studio.walk_trials import TILT_UP_Z, Script, ScriptedRequests, TrialResult
+from motion_studio.walk_trials import Script, ScriptedRequests, TrialResult, trial_result
 from agent.protocol.constants import CYCLE_S
 
 #: The agent's own fall sense (its up axis below 0.6) this many cycles in a row ends the walk early: the robot
@@ -69,35 +68,6 @@ def walk_run(truths: Sequence[Truth | None], motion: str, lean: float, walk_cycl
     if fall is not None:
         filled = filled[:fall + 1]
     return WalkRun(motion, lean, filled, cycles, fall, heading_deg)
-
-
-def trial_result(label: str, truths: Sequence[Truth | None], phases: Sequence[tuple[int, str | None, str | None]]
-                 ) -> TrialResult:
-    """A transition trial's outcome from its truth per cycle and, per cycle, (the script's segment index, the
-    motion and the phase playing), as ``walk_trials.run_script`` reports ours: the trial ends at the first fallen
-    cycle; a fall is blamed on the segment, motion and phase playing when the torso last tilted past
-    ``TILT_UP_Z`` before it.
-
-    Raises:
-        ValueError: no truth at all.
-    """
-    known = [(i, truth) for i, truth in enumerate(truths) if truth is not None]
-    if not known:
-        raise ValueError("no truth in the trial")
-    fall = next((k for k, (_, truth) in enumerate(known) if truth.fallen), None)
-    kept = known if fall is None else known[:fall + 1]
-    tilt = None
-    for index, truth in kept:
-        if truth.up_z >= TILT_UP_Z:
-            tilt = None
-        elif tilt is None:
-            tilt = index
-    fell = fall is not None
-    blamed = phases[min(tilt, len(phases) - 1)] if fell and tilt is not None and phases else (None, None, None)
-    first, last = kept[0][1], kept[-1][1]
-    return TrialResult(label, fell, last.time_s if fell else None, *blamed,
-                       math.dist(first.torso_m[:2], last.torso_m[:2]), min(t.up_z for _, t in kept),
-                       [t for _, t in kept])
 
 
 class RealWalkBench(RealKickBench):
@@ -219,4 +189,4 @@ class RealWalkBench(RealKickBench):
         return walk_run(self._truths(since, start_s), motion, lean, walk_cycles, heading_deg, x_limit_m)
 
 
-__all__ = ["FALLEN_CYCLES", "RealWalkBench", "trial_result", "walk_run"]
+__all__ = ["FALLEN_CYCLES", "RealWalkBench", "walk_run"]

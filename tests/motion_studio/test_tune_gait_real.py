@@ -160,7 +160,7 @@ def test_the_real_backend_without_the_scripts_is_one_line(tmp_path, monkeypatch,
 
 
 def test_a_real_transition_trial_is_reported_as_ours():
-    from motion_studio.realserver.rollout_walk import trial_result
+    from motion_studio.walk_trials import trial_result
 
     upright = [_truth(0.01 * i) for i in range(20)]
     tilting = [_truth(0.2, up_z=0.8), _truth(0.2, up_z=0.7), _truth(0.2, z_m=0.2, up_z=0.3), _truth(0.2, up_z=0.1)]
