@@ -134,16 +134,15 @@ class DribbleConfig:
     """The ball beside or behind the feet within this to the side: one side walk away from it first [m]."""
     free_line_deg: float = 0.0
     """Far from the target the ball may go this far toward the field's long axis off the line ball -> target
-    [deg] (``free_line_out_deg`` away from it): the robot
-    pushes along its own line to the ball when that line lies within this cone, and otherwise lines up on the
-    cone's nearer edge, not on the line to the target. 0 = always toward the target (the skill benchmark's
+    [deg] (``free_line_out_deg`` away from it): the robot pushes along its own line to the ball when that line
+    lies within this cone, and otherwise lines up on the cone's nearer edge, not on the line to the target. 0 = always toward the target (the skill benchmark's
     dribbles, which measure the way along that line). Why: on the real server a touch sent the ball 25-50 deg
     off the walking line, the push ended, and lining up again behind the ball on the line to the goal took
     7-20 s of turns and short walks each time (3 v 3 against robots that only stand: the ball moved from
     x = 5 to x = 12 m in 26.6 s on average, the walk alone covers that in 14 s)."""
     free_line_out_deg: float = 10.0
     """... but only this far to the side away from the field's long axis (y = 0) once the ball lies
-    ``free_line_middle_m`` or more off it [deg] (within, on either side): a cone of 40 deg both ways let balls
+    ``free_line_middle_m`` or more off it [deg] (a ball nearer the axis gets this on both sides): a cone of 40 deg both ways let balls
     drift to y = -3 m by x = 9-13 m on the real server, where the angle to the goal is narrow and the finishing
     slow (x = 12 m to the end 18.9 s instead of 14.5)."""
     free_line_middle_m: float = 0.3
@@ -219,8 +218,10 @@ class Dribble(Skill):
             return near
         if self.pushing:
             avoid = False
-            near_point = pose.to_ego(*self._push_point((bx, by), line))
-            ego = ball_ego if ball_ego[0] > self.config.centre_until_m else near_point
+            if ball_ego[0] <= self.config.centre_until_m:
+                ego = pose.to_ego(*self._push_point((bx, by), line))
+            else:
+                ego = ball_ego
             ego = (ego[0], ego[1] + self.config.push_aim_left_m[world.robot_type])
         blocker = self._opponent_ahead(world)
         if blocker is not None and self._play_through(ball_ego, blocker, (bx, by)):
