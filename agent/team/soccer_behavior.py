@@ -72,12 +72,15 @@ SET_PIECE_CLEARANCE_M = 2.2
 #: cost 10-11 s from the drop ball to the first push against robots that only stand: a turn, a walk round the
 #: ball, another turn, and both field players went for it (equal distances).
 RESTART_BEHIND_M = 2.3
-#: At the own kick-off the second attacker waits here [m] (team frame; own half, on its beam spot's side):
-#: the kick-off flies about 4 m straight ahead and the taker may not touch the ball again, so this player goes
-#: for it next. Its usual spot (2.5 m behind the ball, across from the taker) sent it from its beam spot
-#: (-2.2, 1.2) across to (-2.5, -1.5) on the real server, turned sideways, and from there it reached the ball
-#: 12 s after the kick (on ours, seeds 0-5: 12.6 s from PlayOn to this player at the ball; 11.5 s from here).
-KICK_OFF_FOLLOW_SPOT_M = (-1.0, 0.9)
+#: At the own kick-off the second attacker waits here [m] (team frame; on its beam spot's side, in the
+#: opponent half but wholly inside the centre circle, where the kick-off rule lets the kicking team stand,
+#: REFERENCE §4.4): the kick-off flies about 4 m straight ahead and the taker may not touch the ball again, so
+#: this player goes for it next. Its usual spot (2.5 m behind the ball, across from the taker) sent it from its
+#: beam spot (-2.2, 1.2) across to (-2.5, -1.5) on the real server, turned sideways, and from there it reached
+#: the ball 12 s after the kick; from (-1.0, 0.9) the ball reached x = 5 m 17.8 s after PlayOn (real server,
+#: seeds 1-10, 11-28 s), from here 15.6 s (14-17 s; a tenth run ended in a double-touch free kick, as base
+#: runs sometimes do).
+KICK_OFF_FOLLOW_SPOT_M = (1.0, 1.1)
 #: The match dribble: far from the goal the ball may go up to 40 deg aside of the line to the aim toward the
 #: field's long axis and 10 deg away from it (``DribbleConfig.free_line_deg``), so a ball that rolled off the
 #: walking line is pushed on from where the robot stands instead of lined up again on the line to the goal.
@@ -163,7 +166,7 @@ class SoccerBehavior:
             spot = roles.support_spot(world.unum, ball, holder)
         if set_piece is False:
             spot = _keep_clear(spot, ball, SET_PIECE_CLEARANCE_M)
-        if game.play_mode.startswith("KickOff_"):
+        if game.play_mode.startswith("KickOff_") and spot is not KICK_OFF_FOLLOW_SPOT_M:
             spot = kick_off_spot(*spot, world.unum, opponents_kick_off=set_piece is False)
         self._stand_at(world, spot, ball)
 
