@@ -68,9 +68,10 @@ def test_at_our_kick_off_the_second_attacker_waits_near_the_centre_to_go_for_the
     """3 v 3 against robots that only stand, our kick-off: when the taker plays it, unum 3 stands by
     ``KICK_OFF_FOLLOW_SPOT_M`` ahead of the halfway line inside the centre circle (the referee leaves it there),
     so the next touch comes sooner (the taker may not touch the ball again). Before, it walked back from its
-    beam spot (-2.2, 1.2) to its usual spot 2.5 m behind the ball (here (-2.49, 1.43); on the real server across to (-2.5, -1.5), turned sideways for it, and it
-    reached the kicked ball 12 s after the kick); seeds 0-5 on ours: 12.6 s on average from PlayOn to unum 3 at
-    the ball, 11.5 s from (-1.0, 0.9); on the real server the ball reached x = 5 m 2.2 s sooner from here."""
+    beam spot (-2.2, 1.2) to its usual spot 2.5 m behind the ball (here (-2.49, 1.43); on the real server
+    across to (-2.5, -1.5), turned sideways for it, and it reached the kicked ball 12 s after the kick); seeds
+    0-5 on ours: 12.6 s on average from PlayOn to unum 3 at the ball, 11.5 s from (-1.0, 0.9); on the real
+    server the ball reached x = 5 m 2.2 s sooner from here."""
     import math
 
     from agent.team.soccer_behavior import KICK_OFF_FOLLOW_SPOT_M
