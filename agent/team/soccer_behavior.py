@@ -157,16 +157,19 @@ class SoccerBehavior:
         self.role = "support"
         holder = next(((p.x_m, p.y_m) for p in players if p.unum == self.holder), None)
         second_attacker = roles.second_attacker(players, self.holder) == world.unum
-        if second_attacker and set_piece is True and game.play_mode.startswith("KickOff_"):
-            spot = KICK_OFF_FOLLOW_SPOT_M
-        elif second_attacker:
+        kick_off = game.play_mode.startswith("KickOff_")
+        if second_attacker and set_piece is True and kick_off:
+            # Inside the centre circle: the rule lets it stand there, so kick_off_spot's own-half clamp is skipped.
+            self._stand_at(world, KICK_OFF_FOLLOW_SPOT_M, ball)
+            return
+        if second_attacker:
             self._second_side = roles.second_attacker_side(ball, holder, self._second_side)
             spot = roles.second_attacker_spot(ball, holder, self._second_side)
         else:
             spot = roles.support_spot(world.unum, ball, holder)
         if set_piece is False:
             spot = _keep_clear(spot, ball, SET_PIECE_CLEARANCE_M)
-        if game.play_mode.startswith("KickOff_") and spot is not KICK_OFF_FOLLOW_SPOT_M:
+        if kick_off:
             spot = kick_off_spot(*spot, world.unum, opponents_kick_off=set_piece is False)
         self._stand_at(world, spot, ball)
 
