@@ -160,8 +160,8 @@ def run_script(library: MotionLibrary, script: Script, *, dynamic: DynamicParams
 def trial_result(label: str, truths: Sequence[Truth | None], phases: Sequence[tuple[int, str | None, str | None]]
                  ) -> TrialResult:
     """A transition trial's outcome from its truth per cycle and, per cycle, (the script's segment index, the
-    motion and the phase playing), as :func:`run_script` reports ours (and ``realserver.rollout_walk`` the real server's): the trial ends at the first fallen
-    cycle; a fall is blamed on the segment, motion and phase playing when the torso last tilted past
+    motion and the phase playing), as :func:`run_script` reports ours (and ``realserver.rollout_walk`` the real
+    server's): the trial ends at the first fallen cycle; a fall is blamed on the segment, motion and phase playing when the torso last tilted past
     ``TILT_UP_Z`` before it.
 
     Raises:
