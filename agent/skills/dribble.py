@@ -183,6 +183,9 @@ class Dribble(Skill):
         self._avoider = Avoider(self.walk_config.avoid) if self.walk_config.avoid else None
         self.pushing = False
         """The robot walks through the ball this cycle (for logs and tests)."""
+        self.mode = "start"
+        """What this cycle's request does, for the decision log: search, turn, near:<motion or stop>, blocked,
+        push, avoid or approach."""
         self._search_cycles = 0
         self._short: str | None = None
         self._short_started = False
@@ -202,6 +205,7 @@ class Dribble(Skill):
                     and ball.age_s(world.now_s) <= self.config.stale_ball_s:
                 believed = ball.position  # stale, but better to walk there and look than stand still
         if pose is None or believed is None:
+            self.mode = "search"
             return self._search(motion)
         self._search_cycles = 0
         bx, by = believed
@@ -212,9 +216,11 @@ class Dribble(Skill):
         head = _head(world, ball_ego)
         under_way = self._steer.turn_step(motion)
         if under_way is not None:
+            self.mode = "turn"
             return MotionRequest(under_way.motion, under_way.lean, under_way.turn_deg, under_way.gain, head)
         near = self._near_ball(motion, pose.heading_rad, line, ball_ego, head)
         if near is not None:
+            self.mode = f"near:{near.motion or 'stop'}"
             return near
         if self.pushing:
             avoid = False
@@ -231,13 +237,16 @@ class Dribble(Skill):
             # rule's 0.4 m/s; walking on into a standing opponent gave 52 charging fouls in 120 s on the
             # real server, each sending our player off to the touch line).
             self.pushing = False
+            self.mode = "blocked"
             name = RIGHT if blocker[1] > 0 else LEFT
             return MotionRequest(name if name in motion.library else None, head_deg=head)
         bearing_deg = math.degrees(math.atan2(ego[1], ego[0]))
+        self.mode = "push" if self.pushing else "approach"
         if avoid and self._avoider is not None:
             escape = self._avoider.bearing_deg(world, ego)
             if escape is not None:
                 bearing_deg = escape
+                self.mode = "avoid"
             # None ("surrounded"): walk on toward the point; standing to let the others pass never ends
             # against robots that do not move (a dribbler stood 6 s behind two standing opponents)
         request = self._steer.heading(motion, bearing_deg)

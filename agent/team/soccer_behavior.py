@@ -16,6 +16,7 @@ handled by ``SkillBehavior`` (stand-up first, then the role's skill again).
 
 from __future__ import annotations
 
+import logging
 import math
 from collections.abc import Callable, Hashable
 
@@ -87,6 +88,10 @@ KICK_OFF_FOLLOW_SPOT_M = (1.0, 1.1)
 #: 3 v 3 against robots that only stand, 120 s, seeds 1-16: real server 14 -> 16 goals (40 deg both ways: 15
 #: in 15; 25 deg both ways: 12 in 14), goal kicks after attacks past x = 12 m 2 -> 1; ours 25 -> 22 goals.
 MATCH_DRIBBLE = DribbleConfig(free_line_deg=40.0, free_line_out_deg=10.0)
+#: Every change of a player's decision (its key, and the running skill's ``mode`` where it has one) is logged here
+#: at DEBUG level with the server time, pose and ball: enable it (``motion-studio real match --decisions``) to see
+#: where the time of a match goes; off, it costs one level check per cycle.
+decision_log = logging.getLogger("agent.decisions")
 
 
 class SoccerBehavior:
@@ -111,6 +116,7 @@ class SoccerBehavior:
         self._key: Hashable = None
         self._target: tuple[float, float] | None = None
         self._second_side: float | None = None
+        self._logged: tuple[Hashable, str | None] | None = None
 
     @property
     def motion(self) -> MotionController:
@@ -119,7 +125,21 @@ class SoccerBehavior:
     def __call__(self, world: WorldModel) -> list[Action]:
         self._world = world
         self._decide(world)
-        return self.skills(world)
+        actions = self.skills(world)
+        if decision_log.isEnabledFor(logging.DEBUG):
+            self._log_decision(world)
+        return actions
+
+    def _log_decision(self, world: WorldModel) -> None:
+        decision = (self._key, getattr(self.skills.skill, "mode", None))
+        if decision == self._logged:
+            return
+        self._logged = decision
+        pose, ball = world.pose, world.ball
+        where = "-" if pose is None else f"({pose.x_m:.2f}, {pose.y_m:.2f}, {math.degrees(pose.heading_rad):.0f} deg)"
+        seen = "-" if ball is None or ball.forward_m is None else f"({ball.forward_m:.2f}, {ball.left_m or 0.0:.2f})"
+        decision_log.debug("t=%.2f #%s %s %s %s pose %s ball ego %s", world.now_s, world.unum, self.role,
+                           decision[0], decision[1] or "", where, seen)
 
     # --- decisions --------------------------------------------------------------------------------------
     def _decide(self, world: WorldModel) -> None:

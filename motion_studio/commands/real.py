@@ -111,6 +111,9 @@ def match(
     right: Annotated[str, typer.Option(help="right team: ours, baseline or standing")] = "ours",
     out: Annotated[Path, typer.Option(help="logs")] = Path("out/real_match_check"),
     json_path: Annotated[Optional[Path], typer.Option("--json", help="also write the figures as JSON")] = None,
+    decisions: Annotated[bool, typer.Option(
+        help="log every change of each player's decision (role, skill, skill mode) to agents.log "
+             "(in-process agents)")] = False,
     real_server_dir: ServerDir = None,
     code_label: Annotated[Optional[str], typer.Option(hidden=True)] = None,
 ) -> None:
@@ -132,15 +135,15 @@ def match(
             _fail("match", f"--left/--right must be ours, baseline or standing, got {kind!r}")
     if code != "worktree":
         _play_revision(code, players, duration, seed, kick_off, types, cli, connect_gap, only, out, json_path,
-                       left, right)
+                       left, right, decisions)
         return
     setup = MatchSetup(players, duration, robot_types, connect_gap, left, right)
-    _play(setup, seed, code_label or "worktree", kick_off, cli, only, scripts, out, json_path)
+    _play(setup, seed, code_label or "worktree", kick_off, cli, only, scripts, out, json_path, decisions)
 
 
 def _play_revision(code: str, players: int, duration: float, seed: int, kick_off: str, types: str | None, cli: bool,
                    connect_gap: int, only: str | None, out: Path, json_path: Path | None, left: str = "ours",
-                   right: str = "ours") -> None:
+                   right: str = "ours", decisions: bool = False) -> None:
     """The match with the code of a git revision: exported into a temporary folder and run there by a child
     process (``python -m motion_studio real match --code worktree``)."""
     from motion_studio.realserver.git_export import export_revision, short_revision
@@ -161,13 +164,14 @@ def _play_revision(code: str, players: int, duration: float, seed: int, kick_off
     argv += ["--cli"] if cli else []
     argv += ["--only", only] if only else []
     argv += ["--json", str(json_path.resolve())] if json_path else []
+    argv += ["--decisions"] if decisions else []
     # the exported tree first on the child's path (its cwd, as python -m puts it first), so its code plays
     env = dict(os.environ, PYTHONPATH=str(folder))
     raise typer.Exit(subprocess.run(argv, cwd=folder, env=env).returncode)
 
 
 def _play(setup: MatchSetup, seed: int, label: str, kick_off: str, cli: bool, only: str | None,
-          scripts: Path | None, out: Path, json_path: Path | None) -> None:
+          scripts: Path | None, out: Path, json_path: Path | None, decisions: bool = False) -> None:
     """Both matches (or one, ``only``) with the code of this process; prints the table, writes the JSON."""
     import agent
     from motion_studio.realserver.match_figures import figures, problems, table
@@ -179,6 +183,10 @@ def _play(setup: MatchSetup, seed: int, label: str, kick_off: str, cli: bool, on
         root.removeHandler(handler)
     logging.basicConfig(level=logging.INFO, filename=str(out / "agents.log"), filemode="w",
                         format="%(asctime)s %(threadName)s %(levelname)s %(name)s: %(message)s")
+    if decisions:
+        from agent.team.soccer_behavior import decision_log
+
+        decision_log.setLevel(logging.DEBUG)
     typer.echo(f"code: {label} ({Path(agent.__file__).parent.parent}); {setup.players} v {setup.players}, "
                f"{setup.duration_s:g} s")
     results = {"code": label, "players": setup.players, "duration_s": setup.duration_s, "seed": seed,

@@ -3,6 +3,8 @@ and the kick-off is played at once (issue 15)."""
 
 from __future__ import annotations
 
+import logging
+
 import pytest
 
 from motion_studio.match_agents import SideAgents, make_agent
@@ -81,3 +83,17 @@ def test_at_our_kick_off_the_second_attacker_waits_near_the_centre_to_go_for_the
     x, y, _ = engine.world.torso_position(keys["Left", 3])
     assert x > 0.0 and math.dist((x, y), KICK_OFF_FOLLOW_SPOT_M) < 0.6, (x, y)
     assert math.hypot(x, y) < 2.0 - 0.3  # wholly inside the circle: the footprint's corners too
+
+
+def test_the_decision_log_records_each_change_of_role_skill_and_dribble_mode(caplog):
+    """With ``agent.decisions`` at DEBUG (``motion-studio real match --decisions``) every change of what the
+    striker does is one line with time, pose and ball; the same decision on the next cycle is not repeated."""
+    caplog.set_level(logging.DEBUG, logger="agent.decisions")
+    engine, host = _one_striker(0, (9.5, 0.5), (11.0, 0.0))
+    host.run(round(8.0 / CYCLE_S))
+    lines = [record.getMessage() for record in caplog.records if record.name == "agent.decisions"]
+    assert any(" #2 on_ball ('dribble',) push pose (" in line for line in lines), lines
+    assert all(line.startswith("t=") and " ball ego " in line for line in lines)
+    decisions = [line.split(" pose ")[0].split(" ", 1)[1] for line in lines]
+    assert all(a != b for a, b in zip(decisions, decisions[1:])), decisions
+    assert 2 <= len(lines) < 100
