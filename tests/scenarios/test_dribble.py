@@ -62,3 +62,16 @@ def test_a_ball_at_a_standing_keepers_feet_is_played_past_it_within_20_s(robot_m
         if engine.referee.score_left > 0:
             break
     assert engine.referee.score_left == 1, engine.world.ball_position()
+
+
+@pytest.mark.parametrize("robot_m", [(14.6, -0.2, -20.0), (14.55, 0.35, -40.0)])
+def test_a_ball_in_the_goal_mouth_beside_a_standing_keeper_is_pushed_over_the_line(robot_m):
+    """The real server's seed-16 stall (3 v 3, 120 s): the ball at rest 4 cm before the goal line, 0.19 m beside
+    the keeper's torso, which stands nearer to our robot than the ball. ``DribbleConfig.goal_mouth_m`` plays the
+    ball on; before it the robot side-stepped away from the keeper and back for the last 76 s of that match."""
+    engine, host = _striker_against_a_standing_keeper(0, robot_m, (14.96, -0.17))
+    for _ in range(round(15.0 / CYCLE_S)):
+        host.run(1)
+        if engine.referee.score_left > 0:
+            break
+    assert engine.referee.score_left == 1, engine.world.ball_position()
