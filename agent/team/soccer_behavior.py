@@ -51,18 +51,6 @@ NORMAL_KICK_GOAL_DISTANCE_M = 2.5
 FACE_TOLERANCE_DEG = 20.0
 #: Play modes in which nobody moves (REFERENCE §4.2).
 FROZEN_MODES = frozenset({"BeforeKickOff", "Goal_Left", "Goal_Right", "GameOver", "unknown"})
-#: The on-ball player shoots (the kick motion) instead of dribbling on when the goal is this near [m] (3 m and
-#: 4 m scored 1 and 0 goals in 3 matches on ours, noise; with 3 m the lone striker of tests/scenarios/
-#: test_striker.py circled the ball 2.5 m before the goal). From its window the kick flies about 4 m on both
-#: servers (``SHOT_FORWARD_M``); shooting from 8 or 20 m scored less than dribbling on.
-SHOOT_RANGE_M = 4.0
-#: The shot's window, standing: the ball this far beyond the kick motion's spot (min, max) [m] and this far
-#: across it [m] (measured with motion_studio.kick_rollout on the fitted ball contacts: 3.7-4.5 m from -0.02 to
-#: +0.04 beyond and -0.04 to +0.02 across; 0.7-1.1 m from +0.06 beyond, where the set-piece window still kicks).
-SHOT_FORWARD_M = (-0.02, 0.045)
-SHOT_LATERAL_M = 0.03
-#: After a shot, or a stop whose ball was not in the window, the dribble goes on this long first [s].
-SHOT_COOLDOWN_S = 3.0
 #: A set-piece taker kicks at once when facing the opponent goal within this [deg] (the kick follows the heading).
 SET_PIECE_AIM_DEG = 12.0
 #: Distance the players keep from the ball at the opponents' set pieces [m] (the referee clears 2 m).
@@ -112,7 +100,6 @@ class SoccerBehavior:
         """Who took the own team's last set piece (it may not touch the ball again first)."""
         self._world: WorldModel | None = None
         self._set_piece_aim: tuple[float, float] | None = None
-        self._shot_after_s: float | None = None
         self._key: Hashable = None
         self._target: tuple[float, float] | None = None
         self._second_side: float | None = None
@@ -194,50 +181,21 @@ class SoccerBehavior:
         self._stand_at(world, spot, ball)
 
     def _play_ball(self, ball: tuple[float, float]) -> None:
-        """Dribble the ball toward the opponent goal (``agent.skills.dribble``): on our simulator it moved the
-        ball 10-13 m in 40 s where the kick's line-up took 13-35 s per 2.4 m kick. Within ``SHOOT_RANGE_M``
-        of the goal a dribble that has the ball at its feet, facing the goal, stops and shoots (the dribble
-        brought the ball to 2 m before the empty goal and then swung round it for 30 s)."""
+        """Dribble the ball toward the opponent goal and over its line (``agent.skills.dribble``): on our
+        simulator it moved the ball 10-13 m in 40 s where the kick's line-up took 13-35 s per 2.4 m kick.
+
+        No shot in open play: a dribbler that stopped within 4 m of the goal to kick from the standing window
+        found the ball there in 1 of 40 stops on our simulator (the stop's last steps push the ball on by 0.02 to
+        1.8 m; 36 finishing starts) and in none of 6 on the real server (4 matches); each stop, and the 3 s of
+        dribbling before the next, cost about 2 s."""
         world = self._world
         skill = self.skills.skill
         previous_y = skill.target[1] if self._key == ("dribble",) and isinstance(skill, Dribble) else None
         target = goal_target(ball, seen_opponents(world), previous_y) if world is not None else (15.5, 0.0)
-        if self._key == ("shoot",):
-            if skill is not None and not skill.done:
-                return
-            self._shot_after_s = world.now_s + SHOT_COOLDOWN_S if world is not None else None
-        if self._key == ("shoot_settle",) and world is not None:
-            if not (self.motion.idle or (self.motion.motion_name == STAND and skill is not None and skill.done)):
-                return
-            if self._shot_lined_up(world, target, standing=True):
-                self._use(("shoot",), lambda: PlayMotion(KICK))
-                return
-            self._shot_after_s = world.now_s + SHOT_COOLDOWN_S
-        if (world is not None and KICK in self.motion.library and isinstance(skill, Dribble) and skill.pushing
-                and math.hypot(target[0] - ball[0], target[1] - ball[1]) <= SHOOT_RANGE_M
-                and (self._shot_after_s is None or world.now_s >= self._shot_after_s)
-                and self._shot_lined_up(world, target, standing=False)):
-            self._use(("shoot_settle",), lambda: PlayMotion(STAND))
-            return
         if self._key == ("dribble",) and isinstance(skill, Dribble) and skill.target != target \
                 and not skill.pushing:
             skill.target = target  # a new aim point: keep the skill (and its steering state)
         self._use(("dribble",), lambda: Dribble(*target, MATCH_DRIBBLE, ball_source=roles.ball_belief))
-
-    def _shot_lined_up(self, world: WorldModel, target: tuple[float, float], standing: bool) -> bool:
-        """The ball at the feet in the kick window (``set_pieces.kick_window``; walking, a looser one: the
-        stop moves the robot on a little) and the robot facing the target within ``SET_PIECE_AIM_DEG``."""
-        seen = world.ball
-        if seen is None or seen.forward_m is None or seen.age_s(world.now_s) > 0.2:
-            return False
-        spot = self.motion.library.get(KICK).constants
-        forward = seen.forward_m - float(spot.get("ball_forward_m", 0.125))
-        left = (seen.left_m or 0.0) - float(spot.get("ball_left_m", 0.0))
-        if standing:
-            in_window = SHOT_FORWARD_M[0] <= forward <= SHOT_FORWARD_M[1] and abs(left) <= SHOT_LATERAL_M
-        else:
-            in_window = 0.0 <= forward <= 0.25 and abs(left) <= 0.06
-        return in_window and self._facing(world, target, SET_PIECE_AIM_DEG)
 
     def _take_set_piece(self, world: WorldModel, ball: tuple[float, float]) -> None:
         """One kick toward the opponent goal (the taker may touch the ball only once): the kick motion as
