@@ -51,17 +51,22 @@ def _striker_against_a_standing_keeper(seed: int, robot_m: tuple[float, float, f
     return engine, host
 
 
+def _play_until_scored(engine, host, within_s: float) -> None:
+    """Play until our side scored, at most ``within_s`` of game time; fails unless it scored exactly once."""
+    for _ in range(round(within_s / CYCLE_S)):
+        host.run(1)
+        if engine.referee.score_left > 0:
+            break
+    assert engine.referee.score_left == 1, engine.world.ball_position()
+
+
 @pytest.mark.parametrize("robot_m", [(13.6, 0.3, 0.0), (13.5, -0.5, 20.0)])
 def test_a_ball_at_a_standing_keepers_feet_is_played_past_it_within_20_s(robot_m):
     """The ball 0.16 m in front of the keeper, our striker about 1.1 m behind it: it scores (3 starts x seeds
     0-1: 6 of 6 within 16 s). Before ``DribbleConfig.play_through_m`` none of the 6 scored in 20 s: the robot
     side-stepped away from the keeper, stepped back to the ball, and so on (for up to 90 s in matches)."""
     engine, host = _striker_against_a_standing_keeper(0, robot_m, (14.7, -0.05))
-    for _ in range(round(20.0 / CYCLE_S)):
-        host.run(1)
-        if engine.referee.score_left > 0:
-            break
-    assert engine.referee.score_left == 1, engine.world.ball_position()
+    _play_until_scored(engine, host, 20.0)
 
 
 @pytest.mark.parametrize("robot_m", [(14.6, -0.2, -20.0), (14.55, 0.35, -40.0)])
@@ -70,8 +75,4 @@ def test_a_ball_in_the_goal_mouth_beside_a_standing_keeper_is_pushed_over_the_li
     the keeper's torso, which stands nearer to our robot than the ball. ``DribbleConfig.goal_mouth_m`` plays the
     ball on; before it the robot side-stepped away from the keeper and back for the last 76 s of that match."""
     engine, host = _striker_against_a_standing_keeper(0, robot_m, (14.96, -0.17))
-    for _ in range(round(15.0 / CYCLE_S)):
-        host.run(1)
-        if engine.referee.score_left > 0:
-            break
-    assert engine.referee.score_left == 1, engine.world.ball_position()
+    _play_until_scored(engine, host, 15.0)
