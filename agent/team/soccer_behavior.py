@@ -1,11 +1,11 @@
 """The agent's default soccer behaviour: one role per player each cycle, played through the skills.
 
-Roles (``agent.team.roles``): the player that the shared on-ball rule picks goes to the ball and kicks it
-toward the opponent goal (the seed's choice, REFERENCE §7.8: the normal kick when the goal is nearer than
-2.5 m, else the strong kick; a library without kicks makes it dribble); the goalkeeper guards its line
-facing the ball; the second attacker (``roles.second_attacker``) waits 2.5 m behind the ball, to the side,
-to take over; the others walk to support spots that follow the ball and face it, all clear of the on-ball
-player's path. Nobody moves while the play mode forbids it (before kick-off, after a goal, game over);
+Roles (``agent.team.roles``): the player that the shared on-ball rule picks dribbles the ball toward the
+opponent goal and over its line (``agent.skills.dribble``; the seed kicked instead, REFERENCE §7.8, and the
+kick's line-up cost more time than it won), and takes its own side's set pieces with one kick; the goalkeeper
+guards its line facing the ball; the second attacker (``roles.second_attacker``) waits 2.5 m behind the ball,
+to the side, to take over; the others walk to support spots that follow the ball and face it, all clear of the
+on-ball player's path. Nobody moves while the play mode forbids it (before kick-off, after a goal, game over);
 during the opponents' set pieces the on-ball player waits behind the ball (``restart_spot``), at the distance
 the others keep.
 
@@ -41,12 +41,8 @@ RETARGET_M = 0.5
 #: The goalkeeper re-targets when its guard spot moved this much [m] (a shot's crossing point moves it less
 #: than ``RETARGET_M`` across a goal 2.1 m wide).
 KEEPER_RETARGET_M = 0.2
-#: Without kick motions the on-ball player walks this far through the ball toward the goal [m].
-DRIBBLE_M = 1.0
-#: The kick motion the library must have for kicking (else the player dribbles).
+#: The kick motion a set-piece taker plays once the ball lies in its window (without it, the kick skill).
 KICK = "kick"
-#: Goal nearer than this → the normal kick, else the strong one [m] (REFERENCE §7.8).
-NORMAL_KICK_GOAL_DISTANCE_M = 2.5
 #: Facing error a player standing on its spot tolerates before turning to the ball [deg].
 FACE_TOLERANCE_DEG = 20.0
 #: Play modes in which nobody moves (REFERENCE §4.2).
@@ -243,27 +239,6 @@ class SoccerBehavior:
                 self.role = "set_piece_done"
             return
         self._use(("kick",), lambda: KickToward(aim[0], aim[1], strong=False))
-
-    def _kick_ball(self, ball: tuple[float, float]) -> None:
-        """Walk to the ball until WalkToBall says it is close and in front, then kick; after the kick (or a
-        kick that gave up) approach again."""
-        skill = self.skills.skill
-        if self._key == ("kick",):
-            if skill is not None and not skill.done:
-                return
-            self._key = None
-        if self._key == ("approach",) and skill is not None and skill.done:
-            goal = roles.OPPONENT_GOAL_M
-            if KICK not in self.motion.library:
-                # No kick motions: dribble, walking through the ball toward the goal.
-                heading = math.atan2(goal[1] - ball[1], goal[0] - ball[0])
-                through = (ball[0] + DRIBBLE_M * math.cos(heading), ball[1] + DRIBBLE_M * math.sin(heading))
-                self._use(("kick",), lambda: WalkTo(*through))
-                return
-            strong = math.hypot(goal[0] - ball[0], goal[1] - ball[1]) >= NORMAL_KICK_GOAL_DISTANCE_M
-            self._use(("kick",), lambda: KickToward(goal[0], goal[1], strong=strong))
-            return
-        self._use(("approach",), WalkToBall)
 
     def _stand_at(self, world: WorldModel, spot: tuple[float, float], ball: tuple[float, float] | None,
                   retarget_m: float = RETARGET_M) -> None:
