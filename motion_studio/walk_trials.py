@@ -161,8 +161,8 @@ def trial_result(label: str, truths: Sequence[Truth | None], phases: Sequence[tu
                  ) -> TrialResult:
     """A transition trial's outcome from its truth per cycle and, per cycle, (the script's segment index, the
     motion and the phase playing), as :func:`run_script` reports ours (and ``realserver.rollout_walk`` the real
-    server's): the trial ends at the first fallen cycle; a fall is blamed on the segment, motion and phase playing when the torso last tilted past
-    ``TILT_UP_Z`` before it.
+    server's): the trial ends at the first fallen cycle; a fall is blamed on the segment, motion and phase
+    playing when the torso last tilted past ``TILT_UP_Z`` before it.
 
     Raises:
         ValueError: no truth at all.

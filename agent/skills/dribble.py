@@ -139,24 +139,24 @@ class DribbleConfig:
     clear_lateral_m: float = 0.15
     """The ball beside or behind the feet within this to the side: one side walk away from it first [m]."""
     free_line_deg: float = 0.0
-    """Far from the target the ball may go this far toward the field's long axis off the line ball -> target
-    [deg] (``free_line_out_deg`` away from it): the robot pushes along its own line to the ball when that line
-    lies within this cone, and otherwise lines up on the cone's nearer edge, not on the line to the target. 0 = always toward the target (the skill benchmark's
-    dribbles, which measure the way along that line). Why: on the real server a touch sent the ball 25-50 deg
-    off the walking line, the push ended, and lining up again behind the ball on the line to the goal took
-    7-20 s of turns and short walks each time (3 v 3 against robots that only stand: the ball moved from
-    x = 5 to x = 12 m in 26.6 s on average, the walk alone covers that in 14 s)."""
+    """Far from the target the ball may go this far toward the field's long axis off the line ball -> target [deg]
+    (``free_line_out_deg`` away from it): the robot pushes along its own line to the ball when that line lies within
+    this cone, and otherwise lines up on the cone's nearer edge, not on the line to the target. 0 = always toward
+    the target (the skill benchmark's dribbles, which measure the way along that line). Why: on the real server a
+    touch sent the ball 25-50 deg off the walking line, the push ended, and lining up again behind the ball on the
+    line to the goal took 7-20 s of turns and short walks each time (3 v 3 against robots that only stand: the ball
+    moved from x = 5 to x = 12 m in 26.6 s on average, the walk alone covers that in 14 s)."""
     free_line_out_deg: float = 10.0
     """... but only this far to the side away from the field's long axis (y = 0) once the ball lies
-    ``free_line_middle_m`` or more off it [deg] (a ball nearer the axis gets this on both sides): a cone of 40 deg both ways let balls
-    drift to y = -3 m by x = 9-13 m on the real server, where the angle to the goal is narrow and the finishing
-    slow (x = 12 m to the end 18.9 s instead of 14.5)."""
+    ``free_line_middle_m`` or more off it [deg] (a ball nearer the axis gets this on both sides): a cone of 40 deg
+    both ways let balls drift to y = -3 m by x = 9-13 m on the real server, where the angle to the goal is narrow
+    and the finishing slow (x = 12 m to the end 18.9 s instead of 14.5)."""
     free_line_middle_m: float = 0.3
     """See ``free_line_out_deg`` [m]."""
     free_line_full_m: float = 8.0
     """The whole cone while the ball lies farther than this from the target [m]; ..."""
     free_line_none_m: float = 5.0
-    """... none nearer than this (the shot's line matters near the goal); in between it narrows linearly [m]."""
+    """... none nearer than this (near the goal the line to it matters); in between it narrows linearly [m]."""
     free_line_field_y_m: float = 8.5
     """A line whose 3 m ahead of the ball leaves |y| <= this is turned back toward the target [m] (the touch
     line is at 10 m: a kick-in for the opponents)."""
