@@ -373,12 +373,11 @@ class Dribble(Skill):
         return self._steer.request(None, head_deg=(sweep, -25.0))
 
     def _aim_point(self, x_m: float, y_m: float, heading_rad: float, ball: tuple[float, float],
-                   line_rad: float | None = None) -> tuple[tuple[float, float], bool]:
-        """The point to walk at, and whether to avoid other robots on the way; the ball is played along
-        ``line_rad`` (default: ``line_rad()`` from this position)."""
+                   line: float) -> tuple[tuple[float, float], bool]:
+        """The point to walk at, and whether to avoid other robots on the way; the ball is played along ``line``
+        (``line_rad()`` from this position) [rad]."""
         c = self.config
         tx, ty = self.target
-        line = self.line_rad(x_m, y_m, ball) if line_rad is None else line_rad
         ux, uy = math.cos(line), math.sin(line)
         # Robot relative to the ball in the (along u, left of u) frame, u along the line the ball is played.
         rx, ry = x_m - ball[0], y_m - ball[1]

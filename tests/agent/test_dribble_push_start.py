@@ -17,7 +17,7 @@ def _starts_pushing(robot_m: tuple[float, float], ball_m: tuple[float, float], t
     """A fresh dribble toward ``target_m``, the robot at ``robot_m`` facing the ball: does it push?"""
     dribble = Dribble(*target_m)
     heading = math.atan2(ball_m[1] - robot_m[1], ball_m[0] - robot_m[0])
-    dribble._aim_point(robot_m[0], robot_m[1], heading, ball_m)
+    dribble._aim_point(robot_m[0], robot_m[1], heading, ball_m, dribble.line_rad(robot_m[0], robot_m[1], ball_m))
     return dribble.pushing
 
 
@@ -55,7 +55,7 @@ def test_far_from_the_goal_a_robot_within_the_cone_pushes_along_its_own_line():
     robot, ball = (4.5, -1.3), (5.0, -1.0)
     dribble = Dribble(15.5, 0.0, FREE)
     heading = math.atan2(ball[1] - robot[1], ball[0] - robot[0])
-    dribble._aim_point(robot[0], robot[1], heading, ball)
+    dribble._aim_point(robot[0], robot[1], heading, ball, dribble.line_rad(robot[0], robot[1], ball))
     assert dribble.pushing
     assert _line_deg(robot, ball) == pytest.approx(math.degrees(heading))
     assert not _starts_pushing(robot, ball)  # the default (the skill benchmark's) still lines up first
