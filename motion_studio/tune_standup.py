@@ -55,6 +55,7 @@ from pathlib import Path
 import numpy as np
 
 from agent.motion import MotionController, MotionLibrary, default_library, load_dynamic_params
+from agent.protocol.constants import CYCLE_S
 from agent.skills.base import PlayMotion
 from motion_studio.scenarios import Scenario
 from motion_studio.tuning import BatchBackend, Parameter, Problem, make_backend
@@ -66,7 +67,6 @@ from motions.authoring.standup import (PARAMS_PATH, STANDUPS, GroundPose, Sagitt
                                        write_all)
 from motions.model import Motion
 
-CYCLE_S = 0.02
 #: Standing for the loss: torso centre height [m], up axis z, summed foot force [N], for HOLD_S.
 STAND_Z_M = 0.30
 STAND_UP_Z = 0.9

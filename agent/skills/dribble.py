@@ -20,14 +20,13 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 from agent.motion import MotionController, MotionRequest
+from agent.protocol.constants import CYCLE_S
 from agent.skills.avoid import Avoider
 from agent.skills.base import Skill
 from agent.skills.walk import BACKWARD, FORWARD, LEFT, RIGHT, WALKS, WalkConfig, _Steer, report_walk_odometry
 from agent.world.field import GOAL_HALF_WIDTH_M, HALF_LENGTH_M
 from agent.world.frames import wrap_angle_rad
 from agent.world_model import WorldModel
-
-CYCLE_S = 0.02
 
 
 @dataclass(frozen=True)

@@ -7,12 +7,11 @@ import logging
 
 import pytest
 
+from agent.protocol.constants import CYCLE_S
 from motion_studio.match_agents import SideAgents, make_agent
 from sim.engine import SimEngine
 from sim.inprocess import InProcessHost
 from tests.alone_in_play import alone_in_play
-
-CYCLE_S = 0.02
 
 
 def _one_striker(seed: int, robot_m: tuple[float, float], ball_m: tuple[float, float]) -> tuple[SimEngine, InProcessHost]:
