@@ -20,11 +20,19 @@ def soccer_agent(config: AgentConfig) -> Agent:
 
 
 def baseline_agent(config: AgentConfig) -> Agent:
-    """The baseline opponent: nearest player kicks toward the goal, no coordination
-    (``agent.team.baseline``)."""
+    """The baseline opponent, the seed without coordination: the nearest player lines up and kicks toward the
+    goal (``agent.team.baseline``)."""
     from agent.team.baseline import BaselineBehavior
 
     return Agent(config, BaselineBehavior(config.robot_type))
+
+
+def solo_agent(config: AgentConfig) -> Agent:
+    """Our on-ball play without coordination: the nearest player dribbles toward the goal
+    (``agent.team.baseline``)."""
+    from agent.team.baseline import SoloBehavior
+
+    return Agent(config, SoloBehavior(config.robot_type))
 
 
 def idle_agent(config: AgentConfig) -> Agent:
@@ -33,7 +41,7 @@ def idle_agent(config: AgentConfig) -> Agent:
 
 
 BEHAVIORS: dict[str, Callable[[AgentConfig], Agent]] = {"soccer": soccer_agent, "baseline": baseline_agent,
-                                                      "idle": idle_agent}
+                                                      "solo": solo_agent, "idle": idle_agent}
 DEFAULT_BEHAVIOR = "soccer"
 
 
@@ -49,4 +57,4 @@ def agent_factory(behavior: str) -> Callable[[AgentConfig], Agent]:
         raise ConfigError(f"unknown behavior {behavior!r}; known: {', '.join(BEHAVIORS)}", "behavior") from None
 
 
-__all__ = ["BEHAVIORS", "DEFAULT_BEHAVIOR", "agent_factory", "baseline_agent", "idle_agent", "soccer_agent"]
+__all__ = ["BEHAVIORS", "DEFAULT_BEHAVIOR", "agent_factory", "baseline_agent", "idle_agent", "soccer_agent", "solo_agent"]

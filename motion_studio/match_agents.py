@@ -1,16 +1,17 @@
-"""The agents `motion-studio match` fields, per side: our soccer agent, the baseline opponent, robots that
-only stand, or (``sim.external``) a user's command over TCP. Factories are module-level or frozen
-dataclasses so that batches can pickle them into worker processes."""
+"""The agents `motion-studio match` fields, per side: our soccer agent, the baseline opponent (the seed's kicks),
+our on-ball play without coordination (solo), robots that only stand, or (``sim.external``) a user's command
+over TCP. Factories are module-level or frozen dataclasses so that batches can pickle them into worker
+processes."""
 
 from __future__ import annotations
 
 from dataclasses import dataclass
 
 from agent.agent import Agent, AgentConfig
-from agent.player import baseline_agent, idle_agent, soccer_agent
+from agent.player import baseline_agent, idle_agent, soccer_agent, solo_agent
 
 #: Built-in team kinds for ``--left`` / ``--right`` (``cmd:...`` names an external command).
-TEAM_KINDS = ("ours", "baseline", "standing")
+TEAM_KINDS = ("ours", "baseline", "solo", "standing")
 EXTERNAL_PREFIX = "cmd:"
 
 
@@ -25,8 +26,14 @@ OPPONENT_FORMATION = "thesis"
 
 
 def make_baseline_agent(team: str, unum: int, robot_type: int) -> Agent:
-    """The baseline opponent (``agent.team.baseline``): nearest player kicks toward the goal."""
+    """The baseline opponent (``agent.team.baseline``): the seed without coordination, the nearest player kicks
+    toward the goal."""
     return baseline_agent(AgentConfig(team=team, unum=unum, robot_type=robot_type, formation=OPPONENT_FORMATION))
+
+
+def make_solo_agent(team: str, unum: int, robot_type: int) -> Agent:
+    """Our on-ball play without coordination (``agent.team.baseline``): the nearest player dribbles."""
+    return solo_agent(AgentConfig(team=team, unum=unum, robot_type=robot_type, formation=OPPONENT_FORMATION))
 
 
 def make_idle_agent(team: str, unum: int, robot_type: int) -> Agent:
@@ -34,11 +41,12 @@ def make_idle_agent(team: str, unum: int, robot_type: int) -> Agent:
     return idle_agent(AgentConfig(team=team, unum=unum, robot_type=robot_type, formation=OPPONENT_FORMATION))
 
 
-_BUILDERS = {"ours": make_agent, "baseline": make_baseline_agent, "standing": make_idle_agent}
+_BUILDERS = {"ours": make_agent, "baseline": make_baseline_agent, "solo": make_solo_agent,
+             "standing": make_idle_agent}
 
 
 def check_kind(kind: str) -> str:
-    """``kind`` if it names a team (``ours``, ``baseline``, ``standing`` or ``cmd:COMMAND``).
+    """``kind`` if it names a team (``ours``, ``baseline``, ``solo``, ``standing`` or ``cmd:COMMAND``).
 
     Raises:
         ValueError: anything else (the message lists what is accepted).

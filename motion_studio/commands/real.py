@@ -107,8 +107,8 @@ def match(
     connect_gap: Annotated[int, typer.Option(min=0, max=1000,
         help="cycles each agent plays before the next connects (in-process real match)")] = 3,
     only: Annotated[Optional[str], typer.Option(help="play one of the two matches only: real or ours")] = None,
-    left: Annotated[str, typer.Option(help="left team: ours, baseline or standing")] = "ours",
-    right: Annotated[str, typer.Option(help="right team: ours, baseline or standing")] = "ours",
+    left: Annotated[str, typer.Option(help="left team: ours, baseline, solo or standing")] = "ours",
+    right: Annotated[str, typer.Option(help="right team: ours, baseline, solo or standing")] = "ours",
     out: Annotated[Path, typer.Option(help="logs")] = Path("out/real_match_check"),
     json_path: Annotated[Optional[Path], typer.Option("--json", help="also write the figures as JSON")] = None,
     decisions: Annotated[bool, typer.Option(
@@ -130,9 +130,11 @@ def match(
     except ValueError:
         _fail("match", f"--types must be robot types separated by commas, got {types!r}")
     scripts = _into_netns("match", real_server_dir) if only != "ours" else None
+    from motion_studio.match_agents import TEAM_KINDS
+
     for kind in (left, right):
-        if kind not in ("ours", "baseline", "standing"):
-            _fail("match", f"--left/--right must be ours, baseline or standing, got {kind!r}")
+        if kind not in TEAM_KINDS:
+            _fail("match", f"--left/--right must be one of {', '.join(TEAM_KINDS)}, got {kind!r}")
     if code != "worktree":
         _play_revision(code, players, duration, seed, kick_off, types, cli, connect_gap, only, out, json_path,
                        left, right, decisions)

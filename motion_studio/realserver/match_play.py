@@ -155,7 +155,7 @@ class MatchSetup:
     types: tuple[int, ...] | None = None
     connect_gap_cycles: int = CONNECT_GAP_CYCLES
     left: str = "ours"
-    """The left team's kind (``motion_studio.match_agents.TEAM_KINDS``: ours, baseline, standing)."""
+    """The left team's kind (``motion_studio.match_agents.TEAM_KINDS``: ours, baseline, solo, standing)."""
     right: str = "ours"
     """The right team's kind."""
 

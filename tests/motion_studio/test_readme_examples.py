@@ -50,6 +50,7 @@ HOW = {
     "match --players 3 --duration 600 --matches 4 --workers 2 --out out/batch": PARSE,
     "match --matches 40 --ray auto --out out/batch": PARSE,
     "match --players 11 --duration 20 --agent-processes 2": PARSE,   # ~15-30 s
+    "match --players 11 --right baseline --matches 10 --workers 2": PARSE,   # ten 600 s matches: ~1 h
     "bench skills --json": PARSE,
     "bench sim --robots 22 --json": RUN,
     "bench speed": PARSE,   # a 20 s 11 v 11 match: ~15-30 s
