@@ -122,6 +122,7 @@ CASES: dict[str, Case] = {
     "walk_right": replace(_walk("walk_right"), position_m=(-5.0, 4.0)),
     "standup_back": Case("standup_back", StandUp, 500, fall="back"),
     "standup_front": Case("standup_front", StandUp, 500, fall="front"),
+    "standup_side": Case("standup_side", StandUp, 500, fall="side"),
 }
 #: Torso moved forward by the stand motion from the zero pose [m] (measured: real 0.032, ours 0.033).
 STAND_SHIFT_M = 0.032
@@ -167,16 +168,19 @@ for _case in list(CASES.values()):
         CASES[_case.name] = replace(_case, motion=_case.name)
 CASES["standup_back"] = replace(CASES["standup_back"], motion="standup_back")
 CASES["standup_front"] = replace(CASES["standup_front"], motion="standup_front")
+CASES["standup_side"] = replace(CASES["standup_side"], motion="roll_to_back")
 
 #: Raw joint velocities [rad/s] by cycle of the skill phase that knock the robot over: both hips at 3 rad/s (as
 #: tests/sim/fixtures/real_0.7.3_fall), hips at -1.5 and ankles at -3 rad/s. Measured on both servers, the first
 #: tips the robot forward onto its front (the agent then plays standup_front) and the second onto its back
 #: (standup_back plays), although they are the cases standup_back and standup_front (names kept: the fixtures
-#: carry them; transfer.LIES_ON).
+#: carry them; transfer.LIES_ON). The third, both hip rolls at 3 rad/s, tips it onto its right side (the agent
+#: rolls it onto its back with roll_to_back, then plays standup_back).
 FALL_SCRIPT = {
     "back": {0: {"lle3": 3.0, "rle3": 3.0}, 40: {"lle3": 0.0, "rle3": 0.0}},
     "front": {0: {"lle3": -1.5, "rle3": -1.5, "lle5": -3.0, "rle5": -3.0},
               30: {"lle3": 0.0, "rle3": 0.0, "lle5": 0.0, "rle5": 0.0}},
+    "side": {0: {"lle2": 3.0, "rle2": 3.0}, 30: {"lle2": 0.0, "rle2": 0.0}},
 }
 FALL_SCRIPT_CYCLES = 100
 

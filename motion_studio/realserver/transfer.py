@@ -41,12 +41,12 @@ WALK_20M = Case("walk_20m", lambda: SkillSequence((PlayMotion("walk_forward", re
 #: Walk cases and the direction they walk in (robot frame unit vector).
 WALK_DIRECTIONS = {"walk_forward": (1.0, 0.0), "walk_backward": (-1.0, 0.0), "walk_left": (0.0, 1.0),
                    "walk_right": (0.0, -1.0)}
-STANDUP_CASES = ("standup_back", "standup_front")
+STANDUP_CASES = ("standup_back", "standup_front", "standup_side")
 #: The side each stand-up case's robot really lies on, measured on both servers 2.7 s into the skill phase:
 #: standup_back's fall script tips it forward (torso forward axis z -0.5, up axis z -0.85, centre at 0.19 m) and
 #: the agent plays standup_front; standup_front's tips it onto its back (forward axis z 0.97) and standup_back
-#: plays. The case names are kept: the recorded fixtures carry them.
-LIES_ON = {"standup_back": "front", "standup_front": "back"}
+#: plays. The case names are kept: the recorded fixtures carry them. standup_side's tips it onto its right side.
+LIES_ON = {"standup_back": "front", "standup_front": "back", "standup_side": "side"}
 #: Lying start variations (uniform, seeded): factor on the fall script's joint velocities, cycles added to its
 #: stop step, cycles added to the settle time before it.
 FALL_SPEED_SCALE = (0.85, 1.15)

@@ -169,7 +169,7 @@ def plot(pairs: list[Pair], rows_: list[Row], out_dir: Path) -> list[Path]:
         plt.close(fig)
     standups = [pair for pair in pairs if pair.case.name in STANDUP_CASES]
     if standups:
-        fig, axes = plt.subplots(1, 2, figsize=(11, 4), sharey=True)
+        fig, axes = plt.subplots(1, len(STANDUP_CASES), figsize=(5.5 * len(STANDUP_CASES), 4), sharey=True)
         for ax, case in zip(axes, STANDUP_CASES):
             for pair in (p for p in standups if p.case.name == case):
                 for run, style, colour in ((pair.real, "-", "tab:blue"), (pair.ours, "--", "tab:orange")):
