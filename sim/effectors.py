@@ -72,6 +72,10 @@ STOP_EXTRA_PASSES = 3
 #: this much faster than the row allows [rad/s]; then it is solved again, at most `RUNAWAY_RE_SOLVES` times.
 RUNAWAY_RAD_S = 1.0
 RUNAWAY_RE_SOLVES = 2
+#: The joint-space inertia a motor's prediction divides by is at least this [kg·m²] (no division by 0). A 0-d
+#: array, as `MotorBank._timestep`: numpy converts a Python float operand on every call, which costs about as
+#: much as the operation itself on one robot's 22 values (same value, same results).
+_MIN_INERTIA = np.array(1e-9)
 
 
 @dataclass
@@ -111,6 +115,7 @@ class MotorBank:
         self._diagonal: np.ndarray | None = None
         # Per-step constants, rebuilt by `bind_model` (never changed in place: `gain`/`bias` may share them).
         self._timestep_s = params.timestep_s
+        self._timestep = np.array(self._timestep_s)   # the same as a 0-d array (see `_MIN_INERTIA`)
         self._stiff = np.zeros(0)          # every gain at kv
         self._no_bias = np.zeros(0)
         self._held_limit = np.zeros(0)     # 80 % of the bound: a saturated motor stays saturated above it
@@ -224,6 +229,7 @@ class MotorBank:
         """Cache model-dependent addresses (after every recompile)."""
         self._diagonal = model.M_rowadr[self.dof] + model.M_rownnz[self.dof] - 1  # CSR rows end at the diagonal
         self._timestep_s = model.opt.timestep
+        self._timestep = np.array(self._timestep_s)
         self._stiff = np.full(self.target.size, self.params.motor_kv)
         self._no_bias = np.zeros(self.target.size)
         self._held_limit = 0.8 * self.max_torque
@@ -266,11 +272,14 @@ class MotorBank:
         """
         if self.target.size == 0:
             return
-        h = self._timestep_s
+        h = self._timestep
         kv, limit = self.params.motor_kv, self.max_torque
         velocity = data.qvel[self.dof]
-        inertia = np.maximum(data.M[self._diagonal], 1e-9)
-        load = self.applied + self.stop_torque - inertia * (velocity - self.start_velocity) / h
+        inertia = np.maximum(data.M[self._diagonal], _MIN_INERTIA)
+        # Without a stop row in the last step its torques are the shared zeros: adding them could only turn a
+        # -0.0 into 0.0, and the sign of a zero load changes nothing below.
+        pushed = self.applied if self.stop_torque is self._no_bias else self.applied + self.stop_torque
+        load = pushed - inertia * (velocity - self.start_velocity) / h
         self.start_velocity = velocity
         error = self.target - velocity
         self.bias = self._no_bias
@@ -418,7 +427,9 @@ class MotorBank:
     def _record(self, data: mujoco.MjData) -> tuple[np.ndarray, np.ndarray]:
         """Motor and stop-row torques of the solve just done; returns the joint velocities and servo torques."""
         velocity = data.qvel[self.dof]
-        torque = self.gain * (self.setpoint - velocity) + self.bias
+        torque = self.gain * (self.setpoint - velocity)
+        if self.bias is not self._no_bias:   # (adding the shared zeros could only turn -0.0 into 0.0)
+            torque += self.bias
         self.applied = torque
         if self._any_stop:   # at a stop the servo is the stop row; the motor is the constant torque
             self.applied = np.where(self._at_stop, self.bias, torque)

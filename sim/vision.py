@@ -50,6 +50,16 @@ _LINE_POINTS = FIELD_LINES_M.reshape(-1, 3)
 _PLANES = np.array([[-1.0, _TAN_HALF_FOV, 0.0], [1.0, _TAN_HALF_FOV, 0.0],
                     [0.0, _TAN_HALF_FOV, -1.0], [0.0, _TAN_HALF_FOV, 1.0]])
 _PLANES_T = _PLANES.T
+# Scalar operands of the per-frame ufuncs as 0-d arrays: numpy converts a Python number operand on every call,
+# which costs about as much as the operation itself on one frame's few dozen values (same values and results).
+_ZERO = np.array(0.0)
+_QUARTER_TURN_DEG = np.array(90.0)
+_MINUS_HALF_TURN_DEG = np.array(-180.0)
+_FULL_TURN_DEG = np.array(360.0)
+_MIN_DISTANCE = np.array(MIN_DISTANCE_M)
+_HALF_FOV = np.array(HALF_FOV_DEG)
+_ONE = np.array(1.0)
+_SIGMA_DISTANCE = np.array(SIGMA_DISTANCE_PERCENT / 100.0)
 
 
 @dataclass(frozen=True)
@@ -108,8 +118,8 @@ def _polar_rows(rel: np.ndarray) -> np.ndarray:
     out = np.empty(rel.shape)
     planar = x * x + y * y
     np.sqrt(planar + z * z, out=out[:, 0])
-    theta = np.degrees(np.arctan2(y, x)) - 90.0
-    theta[theta <= -180.0] += 360.0
+    theta = np.degrees(np.arctan2(y, x)) - _QUARTER_TURN_DEG
+    theta[theta <= _MINUS_HALF_TURN_DEG] += _FULL_TURN_DEG
     out[:, 1] = theta
     np.degrees(np.arctan2(z, np.sqrt(planar)), out=out[:, 2])
     return out
@@ -172,8 +182,8 @@ def observe(cams_m: np.ndarray, rotations: np.ndarray, calibration_m: np.ndarray
     # One polar conversion for the objects of every observer and the clipped line ends.
     table = _polar_rows(flat)
     objects = table[:object_rows]
-    visible = ((objects[:, 0] > MIN_DISTANCE_M) & (np.abs(objects[:, 1]) <= HALF_FOV_DEG)
-               & (np.abs(objects[:, 2]) <= HALF_FOV_DEG))
+    visible = ((objects[:, 0] > _MIN_DISTANCE) & (np.abs(objects[:, 1]) <= _HALF_FOV)
+               & (np.abs(objects[:, 2]) <= _HALF_FOV))
     seen = np.flatnonzero(visible)
     seen_k, seen_p = np.divmod(seen if candidates is None else candidates[seen], object_count)
     chosen = np.concatenate((objects[seen], table[object_rows:]))
@@ -301,7 +311,7 @@ def _noisy(values: np.ndarray, rng: np.random.Generator) -> np.ndarray:
     """Per-point noise on (d, θ, φ) rows (REFERENCE §3.5)."""
     draws = rng.standard_normal(values.shape)
     out = values + draws * _SIGMAS
-    out[:, 0] = values[:, 0] * (1.0 + draws[:, 0] * (SIGMA_DISTANCE_PERCENT / 100.0))
+    out[:, 0] = values[:, 0] * (_ONE + draws[:, 0] * _SIGMA_DISTANCE)
     return out
 
 
@@ -311,13 +321,13 @@ def _clip_to_pyramid(segments: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     direction = end - start
     at_start = start @ _PLANES_T                     # (K, L, 4): signed distance of the start to each plane
     along = direction @ _PLANES_T                    # rate of change along the segment
-    entering, leaving = along > 0, along < 0
+    entering, leaving = along > _ZERO, along < _ZERO
     # Each bound is a masked reduction starting at 0 (resp. 1), in one ufunc call: a segment parallel to a
     # plane has no crossing, so its division is skipped instead of run under np.errstate (which costs more).
     t_cross = np.divide(-at_start, along, where=entering | leaving)
     low = np.maximum.reduce(t_cross, axis=2, where=entering, initial=0.0)
     high = np.minimum.reduce(t_cross, axis=2, where=leaving, initial=1.0)
-    visible = (low < high) & ~np.logical_or.reduce((along == 0) & (at_start < 0), axis=2)
+    visible = (low < high) & ~np.logical_or.reduce((along == _ZERO) & (at_start < _ZERO), axis=2)
     clipped = np.empty(segments.shape)
     np.add(start, low[..., None] * direction, out=clipped[..., 0, :])
     np.add(start, high[..., None] * direction, out=clipped[..., 1, :])

@@ -47,6 +47,13 @@ _RESETTING_WARNINGS = tuple(int(w) for w in (mujoco.mjtWarning.mjWARN_BADQPOS, m
 _BLOW_UP_PAST_STOP_RAD = 0.6
 #: turning this fast [rad/s] (motors reach 7, falls about 20) means the robot's physics is blowing up.
 _BLOW_UP_SPEED_RAD_S = 100.0
+# Scalar operands of the per-cycle ufuncs as 0-d arrays: numpy converts a Python number operand on every call,
+# which costs about as much as the operation itself on one robot's few values (same values, same results).
+_BLOW_UP_SPEED = np.array(_BLOW_UP_SPEED_RAD_S)
+_BALL_OWNER = np.array(-2)          # the contact table's owner of the ball's geom (robots are rows 0, 1, ...)
+_FIRST_ROW = np.array(0)
+_ZERO = np.array(0.0)
+_MIN_FOOT_FORCE_SQ_N2 = np.array(1e-18)   # a foot sensor with less squared net force [N²] has no contact
 
 
 def _log_mujoco_warning(message: str) -> None:
@@ -115,6 +122,8 @@ class World:
 
     def __init__(self, params: PhysicsParams | None = None) -> None:
         self.params = params or default_physics_params()
+        # The cycle [s] and gravity [m/s²] as 0-d arrays, for the accelerometer's per-cycle ufuncs (see `_ZERO`).
+        self._cycle, self._gravity = np.array(self.params.cycle_s), np.array(self.params.gravity_m_s2)
         self.spec = self._base_spec()
         self.model = self.spec.compile()
         self.data = mujoco.MjData(self.model)
@@ -307,7 +316,7 @@ class World:
             self._apply_collision_bits(robot)
         self.motors.bind_model(m)
         self._geom_owner = self.geom_robot.copy()   # the contact table's owners: -2 marks the ball
-        self._geom_owner[self.ball_geom] = -2
+        self._geom_owner[self.ball_geom] = _BALL_OWNER
         # Joint angles of every robot in sense-message order, in one gather (see sim.perceptors).
         from sim.perceptors import wire_joint_order
         wire, offsets = [], []
@@ -464,8 +473,8 @@ class World:
             return
         velocity = self.data.qvel[self._root_lin]
         rotation = self.xmat_flat[self._torso_xmat].reshape(-1, 3, 3)   # poses are current (see step)
-        world_acc = (velocity - self.velocity_samples) / self.params.cycle_s
-        world_acc[:, 2] += self.params.gravity_m_s2
+        world_acc = (velocity - self.velocity_samples) / self._cycle
+        world_acc[:, 2] += self._gravity
         # Rᵀ a per robot as a row vector times R (the same sums as the einsum "rji,rj->ri", cheaper).
         self.accelerations = (world_acc[:, None, :] @ rotation)[:, 0]
         self.velocity_samples = velocity
@@ -475,10 +484,10 @@ class World:
         m, d, motors = self.model, self.data, self.motors
         cycle_start = _save_state(d)
         for substep in range(self.params.substeps):
-            ball_velocity = d.qvel[self.ball_dof:self.ball_dof + 3].copy()
             # The first substep starts from the cycle's start; predict writes no saved field, so one copy serves
             # the re-solves here and the motors' own solve from the step's start.
             start = cycle_start if substep == 0 else _save_state(d)
+            ball_velocity = start[1][self.ball_dof:self.ball_dof + 3]   # (a view of the copy: never written)
             motors.predict(m, d, start)
             passes = self.params.motor_active_set_passes + motors.extra_passes if motors.target.size else 1
             saved = start if passes > 1 else None
@@ -518,7 +527,7 @@ class World:
         angle = d.qpos[motors.qadr]
         low, high = self._blow_up_bounds
         bad = (angle < low) | (angle > high)
-        bad |= np.abs(d.qvel[motors.dof]) > _BLOW_UP_SPEED_RAD_S
+        bad |= np.abs(d.qvel[motors.dof]) > _BLOW_UP_SPEED
         if not np.count_nonzero(bad):
             return
         dofs = set(motors.dof[bad].tolist())
@@ -600,10 +609,10 @@ class World:
         # Gathered through the transposed geoms, so each side of the contacts is one contiguous row (the column
         # slices of an (n, 2) array made every test below a strided one); handed on as the (n, 2) view.
         first, second = owner = self._geom_owner[geoms.T]
-        ball_rows = np.minimum(first, second) == -2   # only the ball is -2
+        ball_rows = np.minimum(first, second) == _BALL_OWNER   # only the ball is -2
         # Only robots and the ball have bodies of their own, so a ball contact with a robot is one whose
         # other geom belongs to a robot.
-        return geoms, owner.T, ball_rows, ball_rows & (np.maximum(first, second) >= 0)
+        return geoms, owner.T, ball_rows, ball_rows & (np.maximum(first, second) >= _FIRST_ROW)
 
     def _ball_rebound(self, velocity_before: np.ndarray,
                       contacts: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None) -> None:
@@ -684,7 +693,8 @@ class World:
         # every operation below a strided one, several times slower on a few rows).
         force = -sensordata[self._sensor_force]                 # the ground's force on the foot
         # (ndarray.sum without its Python wrapper: the same reduction)
-        active = (sensordata[self._sensor_found] > 0) & (np.add.reduce(force * force, axis=1) > 1e-18)
+        found = sensordata[self._sensor_found] > _ZERO
+        active = found & (np.add.reduce(force * force, axis=1) > _MIN_FOOT_FORCE_SQ_N2)
         if not np.count_nonzero(active):
             self.frp_active = active
             return
