@@ -8,6 +8,7 @@ changes: beaming every cycle crashes the real server, §3.7), and every answer e
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -15,6 +16,7 @@ from agent.communication import messages, slots
 from agent.errors import ConfigError
 from agent.formation import DEFAULT_FORMATION, BeamSpot, beam_spot, kick_off_spot
 from agent.localization import DEFAULT_LOCALIZER, LOCALIZERS
+from agent.protocol.constants import HALF_LENGTH_M, HALF_WIDTH_M
 from agent.protocol.effectors import Action, Beam, Init, Say, Scene, Syn, format_actions
 from agent.protocol.sense import parse_sense
 from agent.world_model import WorldModel
@@ -25,6 +27,13 @@ from kinematics.spec import ROBOT_TYPES
 Behavior = Callable[[WorldModel], list[Action]]
 #: The ball counts as known for team messages if seen within this time [s].
 BALL_FRESH_S = 1.0
+#: Positions farther outside the field lines than this are not told to teammates [m]: a robot trying to stand up
+#: from its side once believed the ball 54 m away, beyond what a message carries (±38.72 m), and the encoder's
+#: error ended its step (our simulator, 2026-11-26).
+TELL_OUTSIDE_FIELD_M = 3.0
+#: ... and a ball farther away than that field's diagonal is not told either [m].
+TELL_BALL_WITHIN_M = math.hypot(2.0 * (HALF_LENGTH_M + TELL_OUTSIDE_FIELD_M),
+                                2.0 * (HALF_WIDTH_M + TELL_OUTSIDE_FIELD_M))
 HETERO_RSG = "rsg/agent/nao/nao_hetero.rsg"
 #: After a goal the agent beams to its kick-off spot only this many cycles into the Goal_* mode (it lasts 3 s):
 #: the behaviour has stopped the walk into the stance by then. Beamed in the goal's first cycle, players in
@@ -155,7 +164,10 @@ class Agent:
             return messages.TeamMessage("x", unum)
         pose = world.pose if world.localized else None
         ball = world.ball if world.ball is not None and world.ball.age_s(world.now_s) <= BALL_FRESH_S else None
-        if pose is not None:
+        if ball is not None and ((ball.position is not None and not _on_field(ball.position))
+                                 or (ball.distance_m or 0.0) > TELL_BALL_WITHIN_M):
+            ball = None
+        if pose is not None and _on_field((pose.x_m, pose.y_m)):
             position = (pose.x_m, pose.y_m)
             if ball is not None and ball.position is not None:
                 return messages.TeamMessage("c", unum, position=position, ball=ball.position)
@@ -164,6 +176,12 @@ class Agent:
             return messages.TeamMessage("b", unum, ball_distance_m=ball.distance_m,
                                         ball_angle_rad=ball.bearing_rad or 0.0)
         return messages.TeamMessage("x", unum)
+
+
+def _on_field(point: tuple[float, float]) -> bool:
+    """Within TELL_OUTSIDE_FIELD_M of the field (team frame) [m]."""
+    return (abs(point[0]) <= HALF_LENGTH_M + TELL_OUTSIDE_FIELD_M
+            and abs(point[1]) <= HALF_WIDTH_M + TELL_OUTSIDE_FIELD_M)
 
 
 __all__ = ["Agent", "AgentConfig", "Behavior"]

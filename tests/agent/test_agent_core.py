@@ -5,16 +5,20 @@ from __future__ import annotations
 import math
 import subprocess
 import sys
+from types import SimpleNamespace
 
 import pytest
 
 from agent import Agent, AgentConfig
 from agent.agent import GOAL_BEAM_DELAY_CYCLES
 from agent.communication import decode
+from agent.communication.messages import encode
 from agent.errors import ConfigError
 from agent.formation import FORMATIONS, beam_spot
 from agent.protocol import ProtocolError, parse_actions
 from agent.protocol.effectors import Beam, Init, Say, Scene, Syn
+from agent.world.frames import Pose2D
+from agent.world.objects import Tracked
 from tests.agent import synthetic_world as synth
 from tests.agent.protocol_samples import records
 
@@ -171,3 +175,19 @@ def test_play_mode_change_restarts_the_slots_at_label_1():
         said += [i for a in actions if isinstance(a, Say)]
     assert 10 in said  # the cycle the mode changed opens slot 1
     assert 10 + 33 in said and all(i == 10 or i == 43 or i < 10 for i in said)
+
+
+
+@pytest.mark.parametrize("ball_m, localized, kind", [((53.85, 2.0), True, "l"), ((12.0, 2.0), True, "c"),
+                                                    ((80.0, 2.0), False, "x"), ((12.0, 2.0), False, "b")])
+def test_a_ball_believed_far_off_the_field_is_not_told(ball_m, localized, kind):
+    """A robot trying to stand up from its side once believed the ball 53.85 m away: beyond what a message carries
+    (±38.72 m), so the encoder raised and the agent's step ended in an error. Such a ball is left out."""
+    agent = Agent(AgentConfig("Mine", 4))
+    agent.compose_message()  # the hello
+    if localized:
+        agent.world.localizer = SimpleNamespace(pose=Pose2D(-5.0, 0.0, 0.0), localized=True)
+    agent.world.ball = Tracked(ball_m[0], ball_m[1], ball_m[0], ball_m[1], agent.world.now_s)
+    message = agent.compose_message()
+    assert message.kind == kind
+    assert decode(encode(message, "Mine"), "Mine").kind == kind
