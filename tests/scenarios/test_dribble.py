@@ -34,19 +34,22 @@ def test_a_type_4_robot_pushes_the_ball_along_its_line_to_the_goal(back_m, acros
     assert x - BALL_M[0] > 2.0 and abs(math.degrees(math.atan2(y, x - BALL_M[0]))) < 12.0, (x, y)
 
 
-def _striker_against_a_standing_keeper(seed: int, robot_m: tuple[float, float, float], ball_m: tuple[float, float]):
+def _striker_against_a_standing_keeper(seed: int, robot_m: tuple[float, float, float], ball_m: tuple[float, float],
+                                       keeper_m: tuple[float, float, float] | None = None):
     """Our unum 2 (type 0) and the other side's goalkeeper that only stands, in PlayOn: keeper on its beam spot
-    (14.86, 0) in our frame, the ball and our robot set down as given [m, m, deg]."""
+    (14.86, 0) in our frame unless ``keeper_m`` moves it, the ball and our robot set down as given [m, m, deg]."""
     engine = SimEngine(seed=seed)
     host = InProcessHost(engine)
     factory = SideAgents("ours", "standing")
     ours = host.add(factory("Left", 2, 0))
     host.run(2)
-    host.add(factory("Right", 1, 0))
+    keeper = host.add(factory("Right", 1, 0))
     host.run(60)
     engine.referee.kick_off("Left")
     engine.referee.set_play_mode("PlayOn")
     engine.world.place_robot(ours, *robot_m)
+    if keeper_m is not None:
+        engine.world.place_robot(keeper, *keeper_m)
     engine.world.set_ball((ball_m[0], ball_m[1], 0.042))
     return engine, host
 
@@ -76,3 +79,11 @@ def test_a_ball_in_the_goal_mouth_beside_a_standing_keeper_is_pushed_over_the_li
     ball on; before it the robot side-stepped away from the keeper and back for the last 76 s of that match."""
     engine, host = _striker_against_a_standing_keeper(0, robot_m, (14.96, -0.17))
     _play_until_scored(engine, host, 15.0)
+
+
+def test_a_ball_half_a_metre_before_the_line_behind_the_keeper_is_pushed_in():
+    """11 v 11 against the baseline on ours (seed 0): the ball 0.52 m before the goal line, the keeper beside our
+    robot and nearer to it than the ball; with ``DribbleConfig.goal_mouth_m`` 0.5 the robot side-stepped for 50 s.
+    Measured with 1.0: scored after 17.2 s (the first 13 s the robot, set down facing away, looks for the ball)."""
+    engine, host = _striker_against_a_standing_keeper(0, (14.32, -0.31, -64.0), (14.48, -0.26), (14.24, -0.03, 180.0))
+    _play_until_scored(engine, host, 25.0)
