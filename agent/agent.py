@@ -38,7 +38,9 @@ HETERO_RSG = "rsg/agent/nao/nao_hetero.rsg"
 #: After a goal the agent beams to its kick-off spot only this many cycles into the Goal_* mode (it lasts 3 s):
 #: the behaviour has stopped the walk into the stance by then. Beamed in the goal's first cycle, players in
 #: mid-stride were set down on one foot and fell, on both servers (3 v 3: most of our falls against robots
-#: that only stand came at the beam after a goal).
+#: that only stand came at the beam after a goal). The same at half time (BeforeKickOff with the game clock past
+#: 0; both servers wait 3 s there before the second half's kick-off): 11 v 11 on ours, a player walking at 300 s
+#: fell at its beam.
 GOAL_BEAM_DELAY_CYCLES = 50
 
 
@@ -127,7 +129,8 @@ class Agent:
         game = self.world.game
         if not game.beam_allowed or game.unum is None or game.side is None:
             return []
-        if game.play_mode.startswith("Goal_") and game.play_mode_cycles < GOAL_BEAM_DELAY_CYCLES:
+        mid_game = game.play_mode.startswith("Goal_") or (game.play_mode == "BeforeKickOff" and game.game_time_s > 0.0)
+        if mid_game and game.play_mode_cycles < GOAL_BEAM_DELAY_CYCLES:
             return []  # the stance first (see GOAL_BEAM_DELAY_CYCLES)
         spot = beam_spot(game.unum, self.config.formation)
         if game.play_mode.lower() == f"goal_{game.side}":

@@ -68,6 +68,20 @@ def test_beam_again_after_a_goal_never_in_play_on():
     assert 40 <= GOAL_BEAM_DELAY_CYCLES <= 100  # 0.8-2 s: the walk has stopped, the 3 s goal not yet over
 
 
+def test_at_half_time_the_beam_waits_for_the_stance_too():
+    """The second half starts in BeforeKickOff with the game clock at 300 s; a player walking then was set down
+    mid-stride and fell (11 v 11 on ours). At the game's start (clock 0) it beams at once, as before."""
+    agent = Agent(AgentConfig("Mine", 7))
+    modes = [("BeforeKickOff", 0.0)] * 3 + [("PlayOn", 299.96)] * 3 + [("BeforeKickOff", 300.0)] * 60
+    beams = []
+    for i, (mode, game_s) in enumerate(modes):
+        actions = parse_actions(agent.step(synth.sense_bytes(1.0 + 0.02 * i, play_mode=mode, game_time_s=game_s,
+                                                             unum=7 if i == 1 else None,
+                                                             side="left" if i == 1 else None)))
+        beams += [i for a in actions if isinstance(a, Beam)]
+    assert beams == [1, 6 + GOAL_BEAM_DELAY_CYCLES]
+
+
 @pytest.mark.parametrize(("goal", "inside_allowed"), [("Goal_Left", False), ("Goal_Right", True)])
 def test_after_a_goal_the_kick_off_spots_beam_outside_the_circle_when_the_opponents_kick_off(goal, inside_allowed):
     """Unum 2's kick-off spot (-0.5, 0) lies in the centre circle: after our goal (the opponents kick off) the
