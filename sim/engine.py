@@ -275,7 +275,7 @@ class SimEngine:
         for link, beam in beams:
             self._beam(link, beam)
         out, self._outbox = self._outbox, {}
-        return {key: payload for key, payload in out.items() if key in self.agents}
+        return out   # made for connected agents only (`disconnect` drops a leaving agent's message)
 
     def finish_step(self) -> None:
         """The second half of `step` (its points 4-5): physics, referee, poses, this step's sense messages."""

@@ -606,9 +606,12 @@ class World:
         if d.ncon == 0:
             return None
         geoms = d.contact.geom
-        # Gathered through the transposed geoms, so each side of the contacts is one contiguous row (the column
-        # slices of an (n, 2) array made every test below a strided one); handed on as the (n, 2) view.
-        first, second = owner = self._geom_owner[geoms.T]
+        # Gathered through the transposed geoms by `take`, whose result is C-ordered, so each side of the contacts
+        # is one contiguous row (the column slices of an (n, 2) array made every test below a strided one; a
+        # fancy-index gather keeps the index's F order); handed on as the (n, 2) view. The rows are indexed,
+        # not unpacked (iterating an array costs more than the gather).
+        owner = self._geom_owner.take(geoms.T)
+        first, second = owner[0], owner[1]
         ball_rows = np.minimum(first, second) == _BALL_OWNER   # only the ball is -2
         # Only robots and the ball have bodies of their own, so a ball contact with a robot is one whose
         # other geom belongs to a robot.
