@@ -149,6 +149,13 @@ sessions), benchmarks/bench_sim.py.
   fails (0 and 1 stand at the second, 5 and 9 never); ours 0.34 m in every start (μ 2: 0.17 m), so it stands in all.
   Lying still before the sit-up the real torso moves -0.02 to +0.11 m, ours -0.01 to -0.11 m (backward, with either
   friction). What splits the real robot's two modes is not found yet.
+* **Lying on the back with the legs curled (measured 2026-11-26, not explained).** roll_to_back (a robot on its
+  side rolls onto its back) ended with the hips at 99 deg and the knees at -129 deg; standup_back played from
+  there stood the real robot up in 10 of 10 side falls (``motion-studio transfer --case standup_side --motions
+  d123d5e``, median 3.50 s) and ours in 1 of 10: ours rose to 0.27 m and fell back onto its back in the stand-up's
+  knees_in phase every time. From a flat back (roll_to_back's third phase since 07e539d) both stand: real 10/10 in
+  3.74 s, ours 9/10 in 3.64 s. The contact of the curled feet and buttocks with the ground (ODE's force-dependent
+  slip against one Coulomb mu here) is the likely difference; not measured further.
 * **Drag on robots.** SimSpark applies F = -0.01 v and τ = -0.01 ω to every body. Here the whole-body part
   is free-joint damping of the torso (N_bodies x 0.01 on the linear and angular dofs), exact for a rigid
   translation; the drag of limbs swinging relative to the torso is left out (at most 0.06 N·m at full
