@@ -142,6 +142,7 @@ class MotionController:
         self.library = library
         self.dynamic = dynamic or DynamicParams()
         self.config = config or ControllerConfig()
+        self.robot_type = robot_type
         spec = robot_spec(robot_type)
         self.joints = spec.joints
         self._effector = {j.perceptor: j.effector for j in self.joints}

@@ -4,11 +4,12 @@ after real falls, with the real agent recovering by itself (``SkillBehavior``'s 
 
 Trials (each on a fresh simulator; the robot first stands in the walk stance, motion ``stand``):
 
-* **lying** (back and front): the robot first takes a seeded pose near the walk stance (``prepose``: legs
+* **lying** (back, front and side): the robot first takes a seeded pose near the walk stance (``prepose``: legs
   and arms offset as in a step, a kick or a swing of the arms, left and right apart), is laid on that side
-  (``Scenario.lay_down``) at a seeded yaw in [-180, 180) deg and twist about its long axis, then nudged by a
-  seeded push (torso velocity up to ``PUSH_M_S``, angular velocity up to ``SPIN_RAD_S``). The lying body
-  comes to rest on its flat torso whatever the push, so the pose is what makes trials differ.
+  (``Scenario.lay_down``) at a seeded yaw in [-180, 180) deg and twist about its long axis (a side: on its back
+  turned 90 deg to the left or the right, plus that twist), then nudged by a seeded push (torso velocity up to
+  ``PUSH_M_S``, angular velocity up to ``SPIN_RAD_S``). The lying body comes to rest whatever the push, so the
+  pose is what makes trials differ. A robot on its side rolls onto its back first (``roll_to_back``).
 * **pushed**: the robot standing in the walk stance, or walking (``walk_forward``), is knocked over by a
   seeded push in a random direction; the clock starts when it has fallen (REFERENCE §8.1 criterion).
 
@@ -36,7 +37,11 @@ from motion_studio.scenarios import Scenario, Truth
 from motions.model import JointTarget, Motion
 from agent.protocol.constants import CYCLE_S
 
-SIDES = ("back", "front")
+SIDES = ("back", "front", "side")
+#: Lying sides whose stand-up is named after them (a side lie plays roll_to_back, then the back stand-up).
+NAMED_SIDES = ("back", "front")
+#: A side lie: lying on the back turned this far about the long axis, to the left or the right [deg].
+SIDE_TWIST_DEG = 90.0
 #: Trials per side (and pushed trials) in a full / quick run.
 TRIALS, TRIALS_QUICK = 20, 1
 PUSHED_TRIALS, PUSHED_TRIALS_QUICK = 20, 1
@@ -169,7 +174,10 @@ def lying_trial(side: str, rng: random.Random, seed: int, robot_type: int = 0) -
     spin = random_vector(rng, SPIN_RAD_S)
     trial = Trial(side, round(yaw, 1), push, spin)
     scenario = _stood_scenario(seed, rng, robot_type=robot_type)
-    scenario.lay_down(side, yaw, twist)
+    if side == "side":
+        scenario.lay_down("back", yaw, math.copysign(SIDE_TWIST_DEG, rng.uniform(-1.0, 1.0)) + twist)
+    else:
+        scenario.lay_down(side, yaw, twist)
     scenario.push(push, spin)
     return _clock(scenario, trial)
 
@@ -225,7 +233,7 @@ def summarise(trials: list[Trial]) -> dict:
         "time_p90_s": _percentile(times, 0.9),
         "time_max_s": max(times) if times else None,
         "attempts_mean": round(sum(t.attempts for t in counted) / len(counted), 2) if counted else None,
-        "wrong_side": sum(1 for t in counted if t.kind in SIDES and t.sides and t.sides[0] != t.kind),
+        "wrong_side": sum(1 for t in counted if t.kind in NAMED_SIDES and t.sides and t.sides[0] != t.kind),
         "first_attempt_success_rate": round(sum(t.success and t.attempts <= 1 for t in counted) / len(counted), 3)
         if counted else None,
         "trials_with_self_collision": sum(1 for t in counted if t.self_collisions),
@@ -304,7 +312,7 @@ def plot(result: dict, out_dir: pathlib.Path) -> list[pathlib.Path]:
                       if result.get(kind, {}).get("success_rate") is not None)
     hist.set_title(f"Type {result.get('robot_type', 0)}: time to stand (within {TARGET_S:g} s: {rates})")
     hist.legend()
-    colours = {"back": "tab:blue", "front": "tab:orange", "pushed": "tab:green"}
+    colours = {"back": "tab:blue", "front": "tab:orange", "side": "tab:purple", "pushed": "tab:green"}
     for kind in kinds:
         shown = [t for t in trials if t["kind"].startswith(kind) and t["torso_z_m"]][:4]
         for index, t in enumerate(shown):

@@ -24,8 +24,8 @@ sole target relative to the torso) until the CoM lies over its target (fixed poi
 
 Parameters live in ``motions/params/standup.toml`` (one section per motion; tuned on our simulator by
 ``python -m motion_studio.tune_standup``). Run ``python -m motions.authoring.standup`` to write
-``standup_front.xml``, ``standup_back.xml`` and ``roll_to_back.xml`` (a robot lying on its side rolls onto its
-back first) into ``motions/files/``.
+``standup_front.xml``, ``standup_back.xml``, ``roll_to_back.xml`` (a robot lying on its side rolls onto its
+back first) and ``lie_flat.xml`` (a robot on its back lies straight first) into ``motions/files/``.
 """
 
 from __future__ import annotations
@@ -51,9 +51,10 @@ PARAMS_PATH = PARAMS_DIR / "standup.toml"
 #: The stand-ups: motion name = section name; the side the robot lies on.
 STANDUPS: dict[str, str] = {"standup_front": "front", "standup_back": "back"}
 #: Motions made of ground phases only (same section layout, crouch keys unused): a robot lying on its side
-#: rolls onto its back with the arms spread, then pulled in while the legs curl (tried on our simulator from
-#: both sides; a robot already on its back or front stays there).
-ROLLS: dict[str, str] = {"roll_to_back": "side"}
+#: rolls onto its back with the arms spread, then pulled in while the legs curl, then laid straight (tried on our
+#: simulator from both sides; a robot already on its back or front stays there); a robot lying on its back lays
+#: its legs and arms straight before its stand-up (lie_flat).
+ROLLS: dict[str, str] = {"roll_to_back": "side", "lie_flat": "back"}
 #: Section of the gait file that holds the walk stance.
 STANCE_SECTION = "stand"
 #: Keys of a section that record results, not parameters.
