@@ -205,7 +205,7 @@ class FoulTracker:
             newly_joined = self.counters(key).touch_group_size_prev == 1
             if not ((newly_joined or not only_new) and len(group) > c.max_touch_group_size):
                 continue
-            members = list(group)
+            members = sorted(group)  # a set's order follows PYTHONHASHSEED: sorted, the seed decides the shuffle
             placer.rng.shuffle(members)
             fouled = 0
             count = {s: 0 for s in SIDES}
