@@ -208,7 +208,7 @@ class StandUp(Skill):
         self._check_cycles = 0
         self._settle_cycles = 0
         self._quiet_cycles = 0
-        self._rolled = False
+        self._prepared = False
         self.state = "choose"
 
     def step(self, world: WorldModel, motion: MotionController) -> MotionRequest:
@@ -225,17 +225,17 @@ class StandUp(Skill):
             side = lying_side(world)
             if side == "side" and world.body.acc_m_s2[1] < -SIDE_FRONT_ACC_FRACTION * GRAVITY_M_S2:
                 side = "front"  # turned towards its front: the front stand-up works from there, no roll
-            if side == "side" and SIDE_ROLL_MOTION in motion.library and not self._rolled:
+            if side == "side" and SIDE_ROLL_MOTION in motion.library and not self._prepared:
                 name = SIDE_ROLL_MOTION
-                self._rolled = True
+                self._prepared = True
             elif (side == "back" and FLAT_MOTION in motion.library and motion.robot_type in FLAT_FIRST_TYPES
-                  and not self._rolled):
+                  and not self._prepared):
                 name = FLAT_MOTION
-                self._rolled = True
+                self._prepared = True
             else:
                 side = side if side in STANDUP_MOTIONS else standup_side(world)
                 name = STANDUP_MOTIONS[side]
-                self._rolled = False
+                self._prepared = False
                 self.attempts += 1
                 self.sides.append(side)
             self._playing = name
