@@ -59,9 +59,8 @@ class SoloBehavior(SoccerBehavior):
             self.role = "search"
             self._use(("search",), WalkToBall)
             return
-        set_piece = own_set_piece(game.play_mode, game.side)
         self.holder = nearest_to_ball(roles.candidates(world), ball)
-        if self.holder == world.unum and set_piece is not False:
+        if self.holder == world.unum and own_set_piece(game.play_mode, game.side) is not False:
             self.role = "on_ball"
             self._play_ball(ball)
             return

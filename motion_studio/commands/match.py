@@ -22,7 +22,9 @@ def match(
     seed: Annotated[int, typer.Option(min=0, help="first seed")] = 0,
     out: Annotated[Path, typer.Option(help="output folder: results.jsonl (checkpoint), logs, plot")] = Path("out/match"),
     log: Annotated[bool, typer.Option(help="write a SimSpark monitor log per match")] = True,
-    left: Annotated[str, typer.Option(help="left team: ours, baseline (the seed: nearest player kicks), solo (our dribble, no coordination) or standing (robots that only stand)")] = "ours",
+    left: Annotated[str, typer.Option(
+        help="left team: ours, baseline (the seed: nearest player kicks), solo (our dribble, no coordination) or "
+             "standing (robots that only stand)")] = "ours",
     right: Annotated[str, typer.Option(help="right team: ours, baseline, solo or standing")] = "ours",
     team_left: Annotated[str, typer.Option()] = "Left",
     team_right: Annotated[str, typer.Option()] = "Right",
