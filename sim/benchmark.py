@@ -13,6 +13,7 @@ import time
 from dataclasses import dataclass
 from typing import Any
 
+from agent.protocol.constants import CYCLE_S
 from agent.protocol.effectors import Init, Scene, format_actions, joint_velocity_template
 from agent.protocol.sense import parse_sense
 from kinematics.spec import EFFECTOR_NAMES
@@ -150,8 +151,7 @@ def match_speed(make_agent: Any, players_per_team: int = 11, duration_s: float =
     result = run_match(MatchConfig(players_per_team=players_per_team, duration_s=duration_s, seed=seed), make_agent,
                        agent_processes=agent_processes)
     wall = time.perf_counter() - start
-    cycle_s = 0.02
     return MatchSpeed(players_per_team, agent_processes, result.cycles, result.game_time_s, round(wall, 3),
-                      round(result.cycles * cycle_s / wall, 3), round(result.game_time_s / wall, 3),
+                      round(result.cycles * CYCLE_S / wall, 3), round(result.game_time_s / wall, 3),
                       round(cpu(resource.RUSAGE_SELF) - own, 2), round(cpu(resource.RUSAGE_CHILDREN) - children, 2),
                       f"{result.score_left}:{result.score_right}", result.agent_errors)

@@ -277,8 +277,14 @@ class SimEngine:
         out, self._outbox = self._outbox, {}
         return out   # made for connected agents only (`disconnect` drops a leaving agent's message)
 
-    def finish_step(self) -> None:
-        """The second half of `step` (its points 4-5): physics, referee, poses, this step's sense messages."""
+    def finish_step(self) -> dict[int, bytes]:
+        """The second half of `step` (its points 4-5): physics, referee, poses, this step's sense messages.
+
+        Returns:
+            the messages just made, the dict the next `begin_step` hands back (the same object, unless an
+            agent disconnects before it): final now, so a host may pass them on at once (sim.agent_processes
+            does, so its agents think while the engine waits for the previous cycle's replies and applies them).
+        """
         self.world.step()
         self.cycle += 1
         self.referee.update(self.world)
@@ -286,6 +292,7 @@ class SimEngine:
         self._outbox = self._percepts()
         for link in self.agents.values():
             link.synced = False
+        return self._outbox
 
     def _apply_actions(self) -> list[tuple[AgentLink, Beam]]:
         beams: list[tuple[AgentLink, Beam]] = []
