@@ -12,8 +12,11 @@ Numbers are printed as C++ ``ostream << float`` does: the value rounded to float
 
 from __future__ import annotations
 
+import re
 from collections.abc import Mapping
 from dataclasses import dataclass, field
+from functools import lru_cache
+from operator import sub
 
 from agent.protocol.numbers import format_g6, round_float32
 
@@ -23,6 +26,7 @@ Matrix = tuple[float, ...]
 IDENTITY: Matrix = (1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0)
 # A transform is re-sent in a diff when any element moved more than this (server: 0.005).
 TRANSFORM_PRECISION = 0.005
+_MOVED = TRANSFORM_PRECISION.__lt__   # x -> x > TRANSFORM_PRECISION (False for NaN, as the comparison)
 
 # Measured float32 matrices of the real server (see the module docstring).
 _FIELD_ROTATION: Matrix = (-1.0, -8.74228e-08, -3.82137e-15, 0.0, 0.0, -4.37114e-08, 1.0, 0.0, -8.74228e-08, 1.0,
@@ -72,8 +76,27 @@ Decimals = tuple[int, int] | None
 
 
 def _spell(matrix: Matrix, decimals: tuple[int, int]) -> list[str]:
+    """`compact_number` of each element (translation places for elements 12-14).
+
+    With places >= 1 the 16 numbers are printed by one ``%`` format and their zeros cut by two regular
+    expressions over the whole text (the same strings: every number then has a point, so only the zeros after
+    it go); a match log spells some 40 transforms per robot and line, and this was its main cost."""
     rotation, translation = decimals
-    return [compact_number(v, translation if 12 <= i <= 14 else rotation) for i, v in enumerate(matrix)]
+    if rotation < 1 or translation < 1:
+        return [compact_number(v, translation if 12 <= i <= 14 else rotation) for i, v in enumerate(matrix)]
+    text = _matrix_format(rotation, translation) % tuple(matrix)
+    return _NEGATIVE_ZERO.sub("0", _TRAILING_ZEROS.sub("", text)).split(" ")
+
+
+@lru_cache(maxsize=16)
+def _matrix_format(rotation: int, translation: int) -> str:
+    return " ".join(f"%.{translation if 12 <= i <= 14 else rotation}f" for i in range(16))
+
+
+# Zeros at the end of a number, with its point if nothing is left after it ("1.50" -> "1.5", "2.00" -> "2").
+_TRAILING_ZEROS = re.compile(r"\.?0+(?= |$)")
+# A number that is "-0" once its zeros are cut.
+_NEGATIVE_ZERO = re.compile(r"(?<![^ ])-0(?= |$)")
 
 
 def quantize(matrix: Matrix, decimals: Decimals) -> Matrix:
@@ -110,15 +133,24 @@ def trf(key: str, matrix: Matrix, *children: Node) -> Node:
 
 def static_mesh(key: str, model: str, scale: tuple[float, float, float], materials: tuple[str, ...],
                 transparent: bool = False) -> Node:
-    body = (f" (load {model}) (sSc {' '.join(number(s) for s in scale)})"
-            f"(resetMaterials {' '.join(materials)})")
-    return Node("StaticMesh", key, body=body, transparent=transparent)
+    return Node("StaticMesh", key, body=_static_mesh_body(model, scale, materials), transparent=transparent)
 
 
 def smn(key: str, load: str, scale: tuple[float, float, float], material: str, visible: bool = True,
         transparent: bool = False) -> Node:
-    body = f" (load {load}) (sSc {' '.join(number(s) for s in scale)}) (sMat {material})"
-    return Node("SMN", key, body=body, visible=visible, transparent=transparent)
+    return Node("SMN", key, body=_smn_body(load, scale, material), visible=visible, transparent=transparent)
+
+
+# The bodies are cached: a log line rebuilds every robot's nodes (about 500 meshes in 11 v 11), and spelling
+# their constant scales again each time was a third of a match log's cost.
+@lru_cache(maxsize=1024)
+def _static_mesh_body(model: str, scale: tuple[float, float, float], materials: tuple[str, ...]) -> str:
+    return f" (load {model}) (sSc {' '.join(number(s) for s in scale)})(resetMaterials {' '.join(materials)})"
+
+
+@lru_cache(maxsize=1024)
+def _smn_body(load: str, scale: tuple[float, float, float], material: str) -> str:
+    return f" (load {load}) (sSc {' '.join(number(s) for s in scale)}) (sMat {material})"
 
 
 def light(key: str, diffuse: tuple[float, ...], ambient: tuple[float, ...], specular: tuple[float, ...]) -> Node:
@@ -270,7 +302,7 @@ class SceneWriter:
             self._sent[key] = quantize(matrix, None)
             return matrix_text(matrix)
         spelled = _spell(matrix, self.decimals)
-        self._sent[key] = tuple(float(text) for text in spelled)
+        self._sent[key] = tuple(map(float, spelled))
         return "(SLT " + " ".join(spelled) + ")"
 
     def _write(self, node: Node, out: list[str], full: bool) -> None:
@@ -281,7 +313,8 @@ class SceneWriter:
                 out.append(self._send(node.key, node.matrix))
             else:
                 old = self._sent.get(node.key)
-                if old is None or any(abs(a - b) > TRANSFORM_PRECISION for a, b in zip(old, node.matrix)):
+                # any(|a - b| > TRANSFORM_PRECISION) over the 16 elements, as map chains (no Python frame each)
+                if old is None or any(map(_MOVED, map(abs, map(sub, old, node.matrix)))):
                     out.append(" " + self._send(node.key, node.matrix))
         elif node.kind == "Light":
             out.append("(nd Light" + node.body if full else "(nd")

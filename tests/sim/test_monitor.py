@@ -6,10 +6,12 @@ import io
 from pathlib import Path
 
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from agent.protocol.sexpr import parse_sexpr
 from sim.monitor import GameView, MonitorLogWriter, MonitorStream, RobotView, SceneSnapshot, environment_predicates
-from sim.monitor_scene import robot_body_order, translation
+from sim.monitor_scene import _spell, compact_number, robot_body_order, translation
 from sim.rules.params import default_config
 
 SAMPLE = Path(__file__).resolve().parents[3] / "shared" / "samples" / "rcssserver3d-0.7.3_monitor_first_frames.txt"
@@ -115,3 +117,14 @@ def test_log_writer_lines_full_states_and_period() -> None:
     kinds = ["RSG" if "(RSG 0 1)" in line else "RDS" for line in lines]
     assert kinds[0] == "RSG" and kinds.count("RSG") == 3  # at start, after 3 s and after 6 s
     assert all("\n" not in line and not line.startswith("\x00") for line in lines)
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.lists(st.one_of(st.floats(allow_nan=False, allow_infinity=False, min_value=-1e4, max_value=1e4),
+                          st.sampled_from([0.0, -0.0, 0.005, -0.005, 0.995, -0.0004999, 10.0, -10.0, 2.675])),
+                min_size=16, max_size=16),
+       st.sampled_from([(2, 3), (1, 1), (3, 2), (6, 6), (0, 3), (2, 0)]))
+def test_a_transform_is_spelled_as_each_number_on_its_own(matrix, decimals):
+    # the log's one-format spelling of a transform (sim.monitor_scene._spell) against compact_number per element
+    expected = [compact_number(value, decimals[1] if 12 <= i <= 14 else decimals[0]) for i, value in enumerate(matrix)]
+    assert _spell(tuple(matrix), decimals) == expected
