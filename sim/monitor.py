@@ -277,11 +277,17 @@ class WorldMonitorFeed:
         return MonitorStream(self.config)
 
 
+#: zlib level of ``.gz`` monitor logs. An 11 v 11 log line (40 kB, every 0.2 s) takes 5.1 ms at level 9 and 1.25 ms
+#: at 6 (0.25 ms at 1), on the engine process's path every cycle waits for: level 9 cost about 3 % of a match's wall
+#: time for a file 6 % smaller than level 6's (level 1: 46 % larger). Measured 2026-11-27 on a 60 s match's log.
+LOG_GZIP_LEVEL = 6
+
+
 def _open_log_for_writing(path: Path) -> TextIO:
-    """A text stream for a log file; ``.gz`` compresses (level 9: 6 % smaller than 6 on these logs, and the
-    writer's time is small beside the physics)."""
+    """A text stream for a log file; ``.gz`` compresses at ``LOG_GZIP_LEVEL``."""
     if path.suffix == ".gz":
-        return gzip.open(path, "wt", compresslevel=9, encoding="ascii", newline="\n")  # type: ignore[return-value]
+        return gzip.open(path, "wt", compresslevel=LOG_GZIP_LEVEL, encoding="ascii",  # type: ignore[return-value]
+                         newline="\n")
     return open(path, "w", encoding="ascii", newline="\n")
 
 
