@@ -355,13 +355,15 @@ def _evaluate_values(section: str, base: StandUpParams, starts: tuple[Start, ...
 def tune(section: str, base: StandUpParams, generations: int, starts: tuple[Start, ...], sigma: float = 0.1,
          popsize: int | None = None, workers: int = 1, checkpoint: Path | None = None, seed: int = 0,
          frozen: frozenset[str] = frozenset(), log=print, timing_only: bool = False, target_s: float = TARGET_S,
-         time_weight: float = TIME_WEIGHT, evaluator=None, bar: bool = False, robot_type: int = 0) -> dict:
+         time_weight: float = TIME_WEIGHT, evaluator=None, bar: bool = False, robot_type: int = 0,
+         command: str | None = None) -> dict:
     """CMA-ES over :func:`dimensions` around ``base`` in the run folder ``checkpoint`` (default
     ``out/tuning/standup_<section>``); returns the best {"loss", "values", "result"}.
 
     ``evaluator``: judges a generation at once (``evaluator.evaluate(list of StandUpParams)``, e.g. the real
     server's ``motion_studio.realserver.standup_backend.RealEvaluator``); None = :func:`evaluate` on our
-    simulator from ``starts`` in ``workers`` processes; ``robot_type``: see :func:`evaluate`."""
+    simulator from ``starts`` in ``workers`` processes; ``robot_type``: see :func:`evaluate`; ``command``: the
+    command line, kept in the run folder's trace (``--write-only`` writes it into the provenance later)."""
     dims = dimensions(base, frozen, timing_only, robot_type)
     problem = Problem(f"standup:{section}" + (f":type{robot_type}" if robot_type else ""), tuple(dims),
                       partial(_evaluate_values, section, base, starts, target_s, time_weight, robot_type),
@@ -373,7 +375,7 @@ def tune(section: str, base: StandUpParams, generations: int, starts: tuple[Star
         backend = make_backend("inprocess", workers)
     try:
         result = run_cmaes(problem, checkpoint or default_run_dir(f"standup_{section}"), generations, sigma, popsize,
-                           seed, backend, log, bar)
+                           seed, backend, log, bar, meta={"command": command} if command else None)
     finally:
         if evaluator is None:
             backend.close()
@@ -431,14 +433,16 @@ def write_best(section: str, params: StandUpParams, provenance: str, measured: s
 
 def run_folder_best(run_dir: Path) -> dict:
     """The lowest-loss candidate of a run folder's trace (``run_folder.best_evaluation``): {"loss", "values",
-    "result", "generation" (1-based; 0 = the start point), "generations" (run so far)}.
+    "result", "generation" (1-based; 0 = the start point), "generations" (run so far), "command" (the run's
+    command line, None if its trace has none)}.
 
     Raises:
         TuningError: no evaluated candidate in the folder.
     """
     best = best_evaluation(run_dir)
     return {"loss": best["loss"], "values": dict(best["values"]), "result": best.get("result", {}),
-            "generation": int(best.get("iteration", -1)) + 1, "generations": best["generations"]}
+            "generation": int(best.get("iteration", -1)) + 1, "generations": best["generations"],
+            "command": best.get("command")}
 
 
 def _regenerate(params_path: Path, robot_type: int) -> list[Path]:
@@ -507,6 +511,15 @@ def main(argv: list[str] | None = None) -> int:
     starts = default_starts(args.starts, seed=args.starts_seed, noise=args.noise)
     frozen = frozenset(name for name in args.freeze.split(",") if name)
     evaluator = None
+    both = f" --sim-weight {args.sim_weight:g} --sim-starts {args.sim_starts}"
+    options = (f" --type {args.robot_type}" * (args.robot_type != 0)
+               + f" --backend {args.backend}" * (args.backend != "mujoco") + both * (args.backend == "both")
+               + f" --starts-seed {args.starts_seed}" * (args.starts_seed != 1) + " --noise" * args.noise
+               + " --transfer-starts" * args.transfer_starts
+               + " --timing-only" * args.timing_only
+               + (f" --target-s {args.target_s:g} --time-weight {args.time_weight:g}" if args.time_weight else ""))
+    command = (f"motion-studio tune standup {args.section} --starts {args.starts}{options} --freeze '{args.freeze}' "
+               f"--sigma {args.sigma:g} --seed {args.seed} --generations {args.generations}")
     if args.write_only:
         best = run_folder_best(checkpoint)
         args.write = True
@@ -521,25 +534,21 @@ def main(argv: list[str] | None = None) -> int:
         try:
             best = tune(args.section, base, args.generations, starts, args.sigma, args.popsize, args.workers,
                         checkpoint, args.seed, frozen, timing_only=args.timing_only, target_s=args.target_s,
-                        time_weight=args.time_weight, evaluator=evaluator, bar=True, robot_type=args.robot_type)
+                        time_weight=args.time_weight, evaluator=evaluator, bar=True, robot_type=args.robot_type,
+                        command=command)
         finally:
             if evaluator is not None:
                 evaluator.close()
     print(json.dumps(best, indent=1))
     if args.write:
         params = with_values(base, best["values"])
-        both = f" --sim-weight {args.sim_weight:g} --sim-starts {args.sim_starts}"
-        options = (f" --type {args.robot_type}" * (args.robot_type != 0)
-                   + f" --backend {args.backend}" * (args.backend != "mujoco") + both * (args.backend == "both")
-                   + f" --starts-seed {args.starts_seed}" * (args.starts_seed != 1) + " --noise" * args.noise
-                   + " --transfer-starts" * args.transfer_starts
-                   + " --timing-only" * args.timing_only
-                   + (f" --target-s {args.target_s:g} --time-weight {args.time_weight:g}" if args.time_weight else ""))
-        generations = (f"(stopped early; best of generation {best['generation']} of {best['generations']}, written "
-                       f"with --write-only)" if args.write_only else f"--generations {args.generations}")
-        provenance = Provenance.now(f"motion-studio tune standup {args.section} --starts {args.starts}{options} "
-                                    f"--freeze '{args.freeze}' --sigma {args.sigma:g} {generations}"
-                                    ).text("tuned by CMA-ES")
+        if args.write_only:
+            # The run's own options, from its trace: this invocation's are only what --write-only needed.
+            run = best.get("command") or "a run whose trace does not record its command"
+            provenance = Provenance.now(f"{run} (best of generation {best['generation']} of {best['generations']} "
+                                        f"run, written with --write-only)").text("tuned by CMA-ES")
+        else:
+            provenance = Provenance.now(command).text("tuned by CMA-ES")
         times = best["result"].get("times_s")
         write_best(args.section, params, provenance, f"loss {best['loss']:.3f}, time to stand per start {times} s",
                    params_path, robot_type=args.robot_type)

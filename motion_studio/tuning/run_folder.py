@@ -43,7 +43,7 @@ def where_lines(result: RunResult, plots: list[Path]) -> list[str]:
 
 def best_evaluation(run_dir: Path) -> dict:
     """The trace record of the lowest-loss candidate a run folder holds, with ``"generations"``: how many
-    generations the run finished.
+    generations the run finished, and ``"command"``: the command line its run record holds (None if none).
 
     Raises:
         TuningError: the folder has no trace or no evaluated candidate.
@@ -55,7 +55,8 @@ def best_evaluation(run_dir: Path) -> dict:
     if not evaluations:
         raise TuningError(f"{run_dir}: no evaluated candidate in its trace.jsonl")
     best = min(evaluations, key=lambda r: r["loss"])
-    return {**best, "generations": sum(1 for r in records if r["kind"] == "iteration")}
+    command = next((r.get("command") for r in records if r["kind"] == "run"), None)
+    return {**best, "generations": sum(1 for r in records if r["kind"] == "iteration"), "command": command}
 
 
 def best_values(run_dir: Path) -> dict[str, float]:

@@ -11,7 +11,7 @@ import pytest
 from motion_studio import tune_standup
 from motion_studio.realserver.rollout_standup import StandUpOutcome, transfer_starts
 from motion_studio.realserver.standup_backend import RealEvaluator
-from motions.authoring.standup import PARAMS_PATH, SagittalSolver, load_standup_params
+from motions.authoring.standup import PARAMS_PATH, SagittalSolver, load_standup_params, read_meta
 
 
 def test_longer_legs_may_crouch_higher():
@@ -130,6 +130,29 @@ def test_write_only_writes_the_best_of_a_stopped_run(tmp_path):
     assert load_standup_params(target)["standup_back"].crouch_ms == 350
     text = target.read_text(encoding="utf-8")
     assert "best of generation 1 of 2" in text and "[2.2]" in text
+    assert "a run whose trace does not record its command" in text
     # an empty run folder: nothing to write (one line, exit code 2)
     assert tune_standup.main(["standup_back", "--type", "3", "--params", str(target), "--checkpoint",
                               str(tmp_path / "none"), "--write-only"]) == 2
+
+
+def test_write_only_writes_the_run_s_own_command_into_the_provenance(tmp_path):
+    """The provenance names the options of the run that made the trace, not those of the --write-only call (which
+    only needs the folder): before, a run with --starts 6 --sim-weight 0.5 was written down as --starts 4
+    --sim-weight 1, the defaults of the call."""
+    import json
+
+    run = tmp_path / "run"
+    run.mkdir()
+    command = "motion-studio tune standup standup_back --starts 6 --type 3 --backend both --sim-weight 0.5"
+    rows = [{"kind": "run", "problem": "standup:standup_back:type3", "command": command},
+            {"kind": "evaluation", "iteration": 0, "index": 0, "loss": 4.5, "values": {"crouch_ms": 350},
+             "result": {"times_s": [2.2]}},
+            {"kind": "iteration", "iteration": 0, "evaluations": 1, "best_loss": 4.5}]
+    (run / "trace.jsonl").write_text("".join(json.dumps(r) + "\n" for r in rows))
+    target = tmp_path / "standup_type3.toml"
+    assert tune_standup.main(["standup_back", "--type", "3", "--params", str(target), "--checkpoint", str(run),
+                              "--write-only"]) == 0
+    provenance = read_meta(target, "standup_back")["provenance"]
+    assert command in provenance and "--starts 4" not in provenance, provenance
+    assert "best of generation 1 of 1 run, written with --write-only" in provenance
