@@ -94,7 +94,8 @@ def transfer(
     wall_s = time.perf_counter() - started
     for error in result.errors:
         typer.echo(f"transfer: {error}", err=True)
-    rows = transfer_report.rows(result.pairs, result.figures, starts, "not run" if live else "no fixture")
+    rows = transfer_report.rows(result.pairs, result.figures, starts, "not run" if live else "no fixture",
+                                selected=case or None)
     what = ("live: rcssserver3d 0.7.3 and ours side by side" if live else
             "replay: recorded real runs, their commands replayed open loop on ours")
     typer.echo(transfer_report.table(rows, f"transfer ({what}; code {code}; motions {result.motions})"))

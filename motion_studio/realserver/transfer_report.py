@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 import statistics
+from collections.abc import Collection
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -59,14 +60,20 @@ def _fall_note(figures: dict[str, dict]) -> str:
     return ", ".join(fell)
 
 
-def rows(pairs: list[Pair], figures: dict[str, dict], starts: int, absent: str = "no run") -> list[Row]:
+def rows(pairs: list[Pair], figures: dict[str, dict], starts: int, absent: str = "no run",
+         selected: Collection[str] | None = None) -> list[Row]:
     """The table's rows from the runs' figures (``figures[run name]`` = run_figures of that pair); a case with
-    no run is a row of unknowns noted ``absent``."""
+    no run is a row of unknowns noted ``absent``, or "not run" when ``selected`` (the cases asked for) leaves it
+    out (a replay of one case said "no fixture" of all the others)."""
     by_name = {run_name(pair.case): pair for pair in pairs}
+
+    def missing(case: str) -> str:
+        return "not run" if selected is not None and case not in selected else absent
+
     out: list[Row] = []
     for case, key, label in SINGLE_ROWS:
         if case not in by_name:
-            out.append(Row(label, math.nan, math.nan, absent))
+            out.append(Row(label, math.nan, math.nan, missing(case)))
             continue
         pair_figures = figures[case]
         note = _fall_note(pair_figures) if case in WALK_DIRECTIONS or case.startswith("turn") else ""
@@ -76,7 +83,7 @@ def rows(pairs: list[Pair], figures: dict[str, dict], starts: int, absent: str =
         side = f"lying on its {LIES_ON[case]} (case {case})"
         runs = [name for name, pair in by_name.items() if pair.case.name == case]
         if not runs:
-            out.append(Row(f"stand-up {side}: stood 1 s > 0.30 m", math.nan, math.nan, absent))
+            out.append(Row(f"stand-up {side}: stood 1 s > 0.30 m", math.nan, math.nan, missing(case)))
             continue
         counts, times, falls = {}, {}, {}
         for where in ("real", "ours"):
@@ -100,7 +107,7 @@ def rows(pairs: list[Pair], figures: dict[str, dict], starts: int, absent: str =
         out.append(Row("20 m forward walk: heading change [deg]", walk["real"].get("heading change [deg]", math.nan),
                        walk["ours"].get("heading change [deg]", math.nan)))
     else:
-        out.append(Row("20 m forward walk: falls", math.nan, math.nan, absent))
+        out.append(Row("20 m forward walk: falls", math.nan, math.nan, missing(WALK_20M.name)))
     return out
 
 

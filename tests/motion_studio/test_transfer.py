@@ -57,6 +57,20 @@ def test_turn_rows_compare_the_recorded_real_turn_with_ours_replaying_it(tmp_pat
     assert f"{turn.ratio:.2f}" in line and f"{turn.real:.1f}" in line
 
 
+def test_cases_left_out_of_a_selection_read_not_run_and_missing_fixtures_no_fixture() -> None:
+    """A replay of some cases (``--case``) notes the others "not run", not "no fixture" (it said "no fixture" of
+    every case it was not asked for); a selected case without runs keeps the caller's note."""
+    rows = {row.figure: row for row in transfer_report.rows([], {}, starts=1, absent="no fixture",
+                                                              selected=["kick", "standup_side"])}
+    assert rows["kick: distance, ball on its spot [m]"].note == "no fixture"
+    assert rows["turn_left: turn per motion [deg]"].note == "not run"
+    assert rows["stand-up lying on its side (case standup_side): stood 1 s > 0.30 m"].note == "no fixture"
+    assert rows["stand-up lying on its back (case standup_front): stood 1 s > 0.30 m"].note == "not run"
+    assert rows["20 m forward walk: falls"].note == "not run"
+    unselected = {row.figure: row.note for row in transfer_report.rows([], {}, starts=1, absent="no fixture")}
+    assert set(unselected.values()) == {"no fixture"}
+
+
 def test_counts_compare_as_fractions() -> None:
     row = transfer_report.Row("stood", 8, 9, real_of=10, ours_of=10)
     assert row.ratio == pytest.approx(9 / 8)
