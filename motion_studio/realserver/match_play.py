@@ -171,6 +171,22 @@ def second_half_kick_off(play_mode: str, game_time_s: float, first_kick_off: str
     return "Right" if first_kick_off == "Left" else "Left"
 
 
+#: The first ``(kickOff <side>)`` is sent again while the game has not started this long after it [s] ...
+KICK_OFF_RESEND_S = 2.0
+#: ... at most this many times.
+KICK_OFF_RESENDS = 3
+
+
+def kick_off_lost(play_mode: str, game_time_s: float, cycles_since_sent: int, resends: int) -> bool:
+    """True: send the first ``(kickOff <side>)`` again. Why: once (3 v 3 at 1ec7418, seed 26, with the test suite
+    running beside it) the real server logged 5,704 "MonitorControl send ... Resource temporarily unavailable",
+    the game never left BeforeKickOff and the match was 120 s of robots waiting. Only while the clock agent still
+    sees BeforeKickOff at game time 0 ``KICK_OFF_RESEND_S`` after the last send: a kick-off taken starts the game
+    clock, and a ``kickOff`` sent in another play mode would restart the game."""
+    return (play_mode == "BeforeKickOff" and game_time_s <= 0.0 and resends < KICK_OFF_RESENDS
+            and cycles_since_sent >= round(KICK_OFF_RESEND_S / CYCLE_S))
+
+
 def lineup(setup: MatchSetup) -> list[tuple[str, int, int]]:
     """(team, unum, robot type) in connection order, the types of ``python -m agent --type auto`` (or
     ``setup.types``)."""
@@ -276,6 +292,7 @@ def run_real(setup: MatchSetup, kick_off: str, scripts: Path, out: Path) -> Play
             time.sleep(0.02)
         notes["before kick-off"] = {w.name: w.world.game.play_mode for w in agents}
         monitor.send(f"(kickOff {kick_off})")
+        kick_off_sent, resends = clock.cycles, 0
         wall_limit = time.monotonic() + max(600.0, 30.0 * duration_s)
         last_cycles, last_change = -1, time.monotonic()
         half_time_since: int | None = None  # clock cycle the second half's BeforeKickOff was first seen
@@ -283,6 +300,10 @@ def run_real(setup: MatchSetup, kick_off: str, scripts: Path, out: Path) -> Play
             game = clock.world.game
             if game.game_time_s >= duration_s or game.play_mode == "GameOver":
                 break
+            if kick_off_lost(game.play_mode, game.game_time_s, clock.cycles - kick_off_sent, resends):
+                monitor.send(f"(kickOff {kick_off})")
+                kick_off_sent, resends = clock.cycles, resends + 1
+                notes["kick-off resent"] = f"{resends} time(s): still BeforeKickOff at game time 0"
             if half_time_since is None and game.play_mode == "BeforeKickOff" and game.game_time_s > 0.0:
                 half_time_since = clock.cycles
             side = (second_half_kick_off(game.play_mode, game.game_time_s, kick_off, clock.cycles - half_time_since)
