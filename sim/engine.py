@@ -281,9 +281,10 @@ class SimEngine:
         """The second half of `step` (its points 4-5): physics, referee, poses, this step's sense messages.
 
         Returns:
-            the messages just made, the dict the next `begin_step` hands back (the same object, unless an
-            agent disconnects before it): final now, so a host may pass them on at once (sim.agent_processes
-            does, so its agents think while the engine waits for the previous cycle's replies and applies them).
+            the messages just made, the dict the next `begin_step` hands back (the same object; `disconnect`
+            drops a leaving agent's message from it): final now, so a host may pass them on at once
+            (sim.agent_processes does, so its agents think while the engine waits for the previous cycle's
+            replies and applies them).
         """
         self.world.step()
         self.cycle += 1
