@@ -15,15 +15,12 @@ import argparse
 import json
 import platform
 import statistics
-import sys
 import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-if str(ROOT) not in sys.path:  # runnable as a plain script from any directory
-    sys.path.insert(0, str(ROOT))
 
-from agent import Agent, AgentConfig  # noqa: E402
+from agent import Agent, AgentConfig
 
 FIXTURES = ROOT / "tests" / "agent" / "fixtures"
 GOALS_US = {"median": 1000.0, "p99": 2000.0}

@@ -11,11 +11,7 @@ import argparse
 import sys
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
-if str(ROOT) not in sys.path:  # runnable as a plain script from any directory
-    sys.path.insert(0, str(ROOT))
-
-from motion_studio.cli import _register_commands, app  # noqa: E402
+from motion_studio.cli import _register_commands, app
 
 
 def main(argv: list[str] | None = None) -> int:

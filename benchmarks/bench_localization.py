@@ -27,17 +27,14 @@ import itertools
 import json
 import math
 import statistics
-import sys
 from collections.abc import Callable, Iterator
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-if str(ROOT) not in sys.path:  # runnable as a plain script from any directory
-    sys.path.insert(0, str(ROOT))
 
-from agent import Agent, AgentConfig  # noqa: E402
-from agent.world.frames import wrap_angle_rad  # noqa: E402
-from sim.engine import FrozenReferee, SimEngine  # noqa: E402
+from agent import Agent, AgentConfig
+from agent.world.frames import wrap_angle_rad
+from sim.engine import FrozenReferee, SimEngine
 from agent.protocol.constants import CYCLE_S
 
 TEAM, UNUM = "Ours", 2

@@ -12,16 +12,13 @@ import argparse
 import json
 import platform
 import statistics
-import sys
 import time
 from collections.abc import Callable
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-if str(ROOT) not in sys.path:  # runnable as a plain script from any directory
-    sys.path.insert(0, str(ROOT))
 
-from agent.protocol import (  # noqa: E402
+from agent.protocol import (
     FrameDecoder,
     format_actions,
     format_sense,

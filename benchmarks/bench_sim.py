@@ -9,14 +9,8 @@ from __future__ import annotations
 
 import argparse
 import json
-import sys
-from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
-if str(ROOT) not in sys.path:  # runnable as a plain script from any directory
-    sys.path.insert(0, str(ROOT))
-
-from sim.benchmark import TARGET_REALTIME_FACTOR, run  # noqa: E402
+from sim.benchmark import TARGET_REALTIME_FACTOR, run
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -8,13 +8,8 @@ engine with 1 robot >= 100x. Figures, never assertions; on a machine busy with o
 from __future__ import annotations
 
 import sys
-from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
-if str(ROOT) not in sys.path:  # runnable as a plain script from any directory
-    sys.path.insert(0, str(ROOT))
-
-from motion_studio.cli import main as cli_main  # noqa: E402
+from motion_studio.cli import main as cli_main
 
 
 def main(argv: list[str] | None = None) -> None:

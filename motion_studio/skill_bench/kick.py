@@ -318,7 +318,8 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("--quick", action="store_true")
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--type", type=int, default=0, choices=range(5), dest="robot_type")
-    parser.add_argument("--out", type=pathlib.Path, default=pathlib.Path("/tmp/nao3d-bench/kick"))
+    parser.add_argument("--out", type=pathlib.Path, default=pathlib.Path("out/skills/kick"),
+                        help="folder for the plots (default out/skills/kick, as motion-studio bench skills)")
     args = parser.parse_args(argv)
     result = run(args.quick, args.seed, lambda done, total: print(f"{done}/{total}", flush=True), args.robot_type)
     args.out.mkdir(parents=True, exist_ok=True)

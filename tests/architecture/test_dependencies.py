@@ -65,3 +65,26 @@ def test_agent_runs_without_mujoco():
     result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT, timeout=120)
     assert result.returncode == 0, result.stderr
     assert result.stdout.strip() == "False"
+
+
+def _edits_sys_path(path: Path) -> bool:
+    """True if the module calls a mutating method of ``sys.path`` or assigns to it."""
+    for node in ast.walk(ast.parse(path.read_text(), filename=str(path))):
+        target = None
+        if isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute):
+            target = node.func.value
+        elif isinstance(node, (ast.Assign, ast.AugAssign)):
+            targets = node.targets if isinstance(node, ast.Assign) else [node.target]
+            target = next((t for t in targets if isinstance(t, ast.Attribute)), None)
+        if (isinstance(target, ast.Attribute) and target.attr == "path" and isinstance(target.value, ast.Name)
+                and target.value.id == "sys"):
+            return True
+    return False
+
+
+def test_no_module_edits_sys_path():
+    """The editable install makes every room importable; a sys.path edit hides a missing install step."""
+    folders = (*ROOMS, "benchmarks", "scripts", "tests")
+    offenders = [str(p.relative_to(ROOT)) for folder in folders for p in sorted((ROOT / folder).rglob("*.py"))
+                 if _edits_sys_path(p)]
+    assert not offenders, "modules that edit sys.path: " + ", ".join(offenders)
