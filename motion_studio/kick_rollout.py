@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from agent.motion import MotionController, MotionLibrary
+from agent.motion import MotionController, MotionLibrary, load_dynamic_params
 from agent.motion.dynamic import DynamicParams
 from agent.skills.base import PlayMotion
 from motion_studio.scenarios import Scenario, Truth
@@ -99,7 +99,8 @@ def ball_spot(truth: Truth, forward_m: float, left_m: float, heading_deg: float 
 
 def run_kick(library: MotionLibrary, motion: str, placement: Placement = Placement(), seed: int = 0,
              position_m: tuple[float, float] = (0.0, 0.0), heading_deg: float = 0.0, max_s: float = 12.0,
-             dynamic: DynamicParams | None = None, stance_motion: str = "stand", robot_type: int = 0) -> KickRun:
+             dynamic: DynamicParams | None = None, stance_motion: str = "stand", robot_type: int = 0,
+             distance_m: float | None = None) -> KickRun:
     """Play ``motion`` once from the stance with the ball at its spot (moved by ``placement``).
 
     Args:
@@ -108,6 +109,10 @@ def run_kick(library: MotionLibrary, motion: str, placement: Placement = Placeme
         max_s: the run stops this long after the kick request at the latest (else when the ball rests
             after the motion ended).
         robot_type: the robot (0-4) that plays the motions of ``library``.
+        dynamic: the controller's dynamic elements (default: the shipped ones, whose kick-distance table serves
+            ``distance_m``).
+        distance_m: the ball distance requested from the kick (``MotionRequest.distance_m``; None: the kick
+            as authored).
 
     Raises:
         KeyError: an unknown motion. ValueError: the motion lacks the ball constants.
@@ -117,7 +122,7 @@ def run_kick(library: MotionLibrary, motion: str, placement: Placement = Placeme
         forward, left = kick.constants["ball_forward_m"], kick.constants["ball_left_m"]
     except KeyError:
         raise ValueError(f"motion {motion!r} has no ball_forward_m / ball_left_m constants") from None
-    controller = MotionController(library, dynamic or DynamicParams(), robot_type)
+    controller = MotionController(library, dynamic or load_dynamic_params(), robot_type)
     scenario = Scenario(PlayMotion(stance_motion), position_m, heading_deg + placement.heading_deg,
                         robot_type=robot_type, seed=seed, controller=controller, recover_falls=False)
     scenario.run(SETTLE_CYCLES)
@@ -126,7 +131,7 @@ def run_kick(library: MotionLibrary, motion: str, placement: Placement = Placeme
     aim_deg = start.heading_deg - placement.heading_deg
     spot = ball_spot(start, forward + placement.forward_m, left + placement.left_m, aim_deg)
     scenario.place_ball(spot)
-    scenario.set_skill(PlayMotion(motion))
+    scenario.set_skill(PlayMotion(motion) if distance_m is None else PlayMotion(motion, distance_m=distance_m))
     world, robot = scenario.world, scenario.world.by_key[scenario.key]
     feet = list(robot.foot_bodies.values())
     previous_feet = np.array([world.body_position(b) for b in feet])

@@ -27,6 +27,8 @@ Playback (REFERENCE §6, thesis controller):
   is the library's gain base motion (same keyframe count) or the motion's first keyframe.
 * Slowdown (REFERENCE §7.2): after a stop request, the phases of a walk (a motion with a ``speed_m_s``
   constant) are stretched by the slowdown curve.
+* Kick distance: a request with ``distance_m`` stretches the strike phases of the kicks the kick-distance
+  curve names (a slower swing, a shorter kick).
 
 Joint targets are kept ``joint_margin_deg`` inside the joint limits: at a stop the server ignores new
 commands (REFERENCE §2.2), so a joint driven into its stop could never leave it.
@@ -77,6 +79,8 @@ class MotionRequest:
     head_deg: (yaw, pitch) targets of the head joints in SimSpark degrees, or None to let the motion
         drive them.
     interrupt: drop the current motion at once (no finalize), e.g. for a stand-up after a fall.
+    distance_m: the ball distance a kick should reach [m] (the kick-distance curve gives its strike's
+        stretch); None = the kick as authored (its full distance).
     """
 
     motion: str | None = None
@@ -85,6 +89,7 @@ class MotionRequest:
     gain: float | None = None
     head_deg: tuple[float, float] | None = None
     interrupt: bool = False
+    distance_m: float | None = None
 
 
 @dataclass
@@ -343,6 +348,9 @@ class MotionController:
         if playback.stopping and "speed_m_s" in playback.motion.constants:
             duration_s *= self.dynamic.slowdown.factor(playback.phases_since_stop)
             playback.phases_since_stop += 1
+        distance = self._request.distance_m
+        if distance is not None and self.dynamic.kick_distance.applies(playback.name, phase.name):
+            duration_s *= self.dynamic.kick_distance.stretch_for(distance)
         targets = {wire: self._phase_target(playback, phase, wire, t.angle_rad, t.computed)
                    for wire, t in phase.targets.items() if wire in self._effector}
         self._begin(playback, _Keyframe(phase.name, 0, targets, hold_unlisted=True), duration_s, current)

@@ -10,7 +10,9 @@ Each element is a parametrised curve whose numbers live in a TOML file (default
 * **slowdown**: the k-th phase (k = 0, 1, ...) played after a stop request lasts
   ``1 + stretch * min(1, (k + 1) / ramp_phases)`` times its authored duration;
 * **turn gain**: a requested turn [deg] -> gain in [min_gain, 1] that scales a turn motion, and back
-  (the turn one motion makes at a gain), for dead reckoning and the turn benchmark's prediction error.
+  (the turn one motion makes at a gain), for dead reckoning and the turn benchmark's prediction error;
+* **kick distance**: a requested ball distance [m] -> a stretch factor (>= 1) of a kick's strike phases: a
+  slower swing sends the ball a shorter way (the distance-controlled kick, measured on the real server).
 """
 
 from __future__ import annotations
@@ -179,12 +181,62 @@ class TurnGain:
 
 
 @dataclass(frozen=True)
+class KickDistance:
+    """Kick distance: requested ball distance [m] -> stretch of the strike phases' durations.
+
+    Why the timing: the swing and strike phases are shorter than the joints can follow (they run at their
+    speed limits through the contact), so stretching them lowers the foot's speed at the contact, and the ball
+    goes about 1 m per m/s it is launched with (REFERENCE §4, the real ball roll); the kick's poses, and with
+    them its line-up and balance, stay the same. The table is measured: each stretch with the distance it
+    gave (``distance_points_m`` increasing, ``stretch`` not increasing: a longer way needs a faster swing). A
+    request gets the stretch of the nearest measured distance, never one in between: the phases last whole
+    cycles, so an interpolated stretch would round to cycle counts nobody measured.
+    """
+
+    motions: tuple[str, ...] = ()
+    """The kick motions the table applies to (a mirrored kick shares it)."""
+    phases: tuple[str, ...] = ("swing", "strike")
+    """The phases whose durations are stretched."""
+    distance_points_m: tuple[float, ...] = (1.0,)
+    """Measured ball distances [m], increasing."""
+    stretch: tuple[float, ...] = (1.0,)
+    """The duration factor that gave each distance (1 = as authored: the kick's full distance)."""
+    provenance: str = ""
+
+    def __post_init__(self) -> None:
+        _check_curve("kick_distance table", self.distance_points_m, self.stretch)
+        if any(b <= a for a, b in zip(self.distance_points_m, self.distance_points_m[1:])):
+            raise ValueError(f"kick_distance distance_points_m must increase strictly, got "
+                             f"{list(self.distance_points_m)}")
+        if any(not (f >= 1.0 and math.isfinite(f)) for f in self.stretch):
+            raise ValueError(f"kick_distance stretch factors must be >= 1, got {list(self.stretch)}")
+        if any(b > a for a, b in zip(self.stretch, self.stretch[1:])):
+            raise ValueError(f"kick_distance stretch must not increase with the distance, got {list(self.stretch)}")
+
+    def applies(self, motion: str, phase: str) -> bool:
+        return motion in self.motions and phase in self.phases
+
+    def _nearest(self, distance_m: float) -> int:
+        """Index of the measured distance nearest to ``distance_m`` (the shorter one on a tie)."""
+        return min(range(len(self.distance_points_m)), key=lambda i: abs(self.distance_points_m[i] - distance_m))
+
+    def stretch_for(self, distance_m: float) -> float:
+        """Duration factor of the strike phases for a ball distance of ``distance_m`` [m]."""
+        return self.stretch[self._nearest(distance_m)]
+
+    def expected_distance_m(self, distance_m: float) -> float:
+        """The measured distance [m] the kick is expected to reach for a request of ``distance_m`` [m]."""
+        return self.distance_points_m[self._nearest(distance_m)]
+
+
+@dataclass(frozen=True)
 class DynamicParams:
     """All dynamic elements; ``source`` is the file they were read from (None: defaults)."""
 
     walk_lean: WalkLean = field(default_factory=WalkLean)
     slowdown: Slowdown = field(default_factory=Slowdown)
     turn_gain: TurnGain = field(default_factory=TurnGain)
+    kick_distance: KickDistance = field(default_factory=KickDistance)
     source: str | None = None
 
 
@@ -213,7 +265,7 @@ def load_dynamic_params(path: str | Path | None = None) -> DynamicParams:
         data = tomllib.loads(path.read_text(encoding="utf-8"))
     except tomllib.TOMLDecodeError as error:
         raise ValueError(f"{path}: {error}") from None
-    sections = {"walk_lean": WalkLean, "slowdown": Slowdown, "turn_gain": TurnGain}
+    sections = {"walk_lean": WalkLean, "slowdown": Slowdown, "turn_gain": TurnGain, "kick_distance": KickDistance}
     unknown = set(data) - set(sections)
     if unknown:
         raise ValueError(f"{path}: unknown sections {sorted(unknown)}; known: {sorted(sections)}")
@@ -238,7 +290,7 @@ def _toml_value(value: object) -> str:
 def dumps_dynamic_params(params: DynamicParams, header: str) -> str:
     """TOML text of ``params`` with ``header`` (lines written as ``#`` comments) on top."""
     lines = [f"# {line}".rstrip() for line in header.splitlines()]
-    for name in ("walk_lean", "slowdown", "turn_gain"):
+    for name in ("walk_lean", "slowdown", "turn_gain", "kick_distance"):
         section = getattr(params, name)
         lines += ["", f"[{name}]"]
         lines += [f"{f.name} = {_toml_value(getattr(section, f.name))}" for f in fields(section)]

@@ -81,20 +81,27 @@ class KickToward(Skill):
         target_x_m, target_y_m: where the ball should go, team frame (own goal at -x).
         strong: use ``kick_strong`` (falls back to ``kick`` if the library lacks it).
         config: tolerances and moves.
+        distance_m: the ball distance wanted [m] (the distance-controlled kick: the kick's strike is slowed by
+            the controller's kick-distance table, ``agent.motion.dynamic.KickDistance``); None = as far as the
+            kick goes. Implies the normal kick, whose table it is.
 
     After ``done``: ``kicked`` says whether a kick was played, ``foot`` which motion, ``reason`` why it
     stopped without kicking, ``kick_started_s`` the server time the kick motion was first requested.
     """
 
     def __init__(self, target_x_m: float, target_y_m: float, strong: bool = False,
-                 config: KickConfig | None = None) -> None:
+                 config: KickConfig | None = None, distance_m: float | None = None) -> None:
         super().__init__()
         if not (math.isfinite(target_x_m) and math.isfinite(target_y_m)):
             raise ValueError(f"KickToward target must be finite, got ({target_x_m!r}, {target_y_m!r})")
+        if distance_m is not None and not (math.isfinite(distance_m) and distance_m > 0.0):
+            raise ValueError(f"KickToward distance_m must be a positive number of metres, got {distance_m!r}")
         self.target = (float(target_x_m), float(target_y_m))
-        self.strong = strong
+        self.distance_m = distance_m
+        self.strong = strong and distance_m is None
         self.config = config or KickConfig()
-        self.name = f"kick{' strong' if strong else ''} toward ({target_x_m:.1f}, {target_y_m:.1f})"
+        reach = f" {distance_m:.1f} m" if distance_m is not None else ""
+        self.name = f"kick{' strong' if self.strong else ''}{reach} toward ({target_x_m:.1f}, {target_y_m:.1f})"
         self.reset()
 
     def reset(self) -> None:
@@ -315,7 +322,7 @@ class KickToward(Skill):
         if motion.completed[name] > self._kicks_before:
             self.done, self.kicked = True, True
             return self._request(None)
-        return MotionRequest(name, head_deg=(0.0, self.config.head_pitch_deg))
+        return MotionRequest(name, head_deg=(0.0, self.config.head_pitch_deg), distance_m=self.distance_m)
 
 
 __all__ = ["KickConfig", "KickToward", "Spot", "kick_spots"]

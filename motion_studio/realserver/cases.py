@@ -138,6 +138,21 @@ def _kick(name: str) -> Case:
 
 for _name in ("kick", "kick_left", "kick_strong", "kick_strong_left"):
     CASES[_name] = _kick(_name)
+#: Requests of the distance-controlled kick cases kick_<d>m [m] (the shipped kick-distance table's range).
+CONTROLLED_KICK_M = (1, 2, 3, 4)
+
+
+def _controlled_kick(distance_m: int) -> Case:
+    """The right kick from its spot asked for ``distance_m`` (``MotionRequest.distance_m``, the controller's
+    kick-distance table)."""
+    name = f"kick_{distance_m}m"
+    return Case(name, lambda: SkillSequence((PlayMotion("stand"), STAND_CYCLES),
+                                            (PlayMotion("kick", distance_m=float(distance_m)), None), (None, None)),
+                STAND_CYCLES + 300, motion="kick", kick=True)
+
+
+for _distance in CONTROLLED_KICK_M:
+    CASES[f"kick_{_distance}m"] = _controlled_kick(_distance)
 
 
 def _dribble(name: str, position_m: tuple[float, float], direction_deg: float, way_m: float,

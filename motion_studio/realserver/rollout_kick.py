@@ -37,6 +37,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from agent.motion import MotionController, MotionLibrary, load_dynamic_params
+from agent.motion.dynamic import DynamicParams
 from agent.protocol.effectors import Action, JointVelocity
 from agent.skills.base import PlayMotion
 from agent.skills.behavior import SkillBehavior
@@ -270,12 +271,15 @@ class RealKickBench:
         workdir: server log, monitor frames.
         config: where the robot stands, how long it stands.
         scripts: the real-server scripts (default: motion_studio.realserver.paths.scripts_dir()).
+        dynamic: the controller's dynamic elements (default: the shipped ones).
 
     Raises:
         RealServerError: the scripts are missing.
     """
 
-    def __init__(self, workdir: Path, config: RealKickConfig | None = None, scripts: Path | None = None) -> None:
+    def __init__(self, workdir: Path, config: RealKickConfig | None = None, scripts: Path | None = None,
+                 dynamic: DynamicParams | None = None) -> None:
+        self.dynamic = dynamic
         self.scripts = checked_scripts_dir(scripts)
         self.workdir = Path(workdir)
         self.config = config or RealKickConfig()
@@ -319,7 +323,7 @@ class RealKickBench:
         self.close()
 
     def run(self, library: MotionLibrary, motion: str, placement: Placement = Placement(),
-            record: bool = False) -> RealKickRun:
+            record: bool = False, distance_m: float | None = None) -> RealKickRun:
         """One kick of ``motion`` (``library`` must also hold ``stand``) with the ball at its spot moved by
         ``placement``; a stalled server is restarted and the rollout tried again once.
 
@@ -334,7 +338,7 @@ class RealKickBench:
             if self.session is None:
                 self._open(library)
             try:
-                result = self._run(library, motion, placement, record)
+                result = self._run(library, motion, placement, record, distance_m)
                 result.restarts = self.restarts
                 return result
             except (OSError, RuntimeError, ValueError) as error:
@@ -369,7 +373,7 @@ class RealKickBench:
         """A fresh controller plays ``stand`` where the robot is, the ball is parked, the robot is moved upright
         to the spot facing ``heading_deg`` and stands there ``settle_cycles``."""
         config, session = self.config, self.session
-        self.behavior.motion = MotionController(library, load_dynamic_params(), 0)
+        self.behavior.motion = MotionController(library, self.dynamic or load_dynamic_params(), 0)
         sx, sy = config.spot_m
         session.command(f"(ball (pos {sx + config.park_ball_m[0]} {sy + config.park_ball_m[1]} {BALL_Z_M})"
                         f"(vel 0 0 0))")
@@ -382,7 +386,8 @@ class RealKickBench:
         self._wake = list(WAKE_HEAD_RAD_S)
         self._steps(config.settle_cycles)
 
-    def _run(self, library: MotionLibrary, motion: str, placement: Placement, record: bool) -> RealKickRun:
+    def _run(self, library: MotionLibrary, motion: str, placement: Placement, record: bool,
+             distance_m: float | None = None) -> RealKickRun:
         config, session = self.config, self.session
         behavior = self.behavior
         self._record = None
@@ -407,7 +412,7 @@ class RealKickBench:
         # the kick (frames from a full state on, so that the diffs can be followed)
         since = len(session.monitor.frames)
         session.command("(reqfullstate)")
-        behavior.set_skill(PlayMotion(motion))
+        behavior.set_skill(PlayMotion(motion) if distance_m is None else PlayMotion(motion, distance_m=distance_m))
         if record:
             self._record = []
         kick_start_s = None

@@ -12,6 +12,9 @@ Trials:
   ball with a larger seeded error (ball -1 to +8 cm along, ±5 cm across, heading ±10°); the skill lines up
   from its own world model: time from
   the skill's start to the contact, distance, direction error, falls, kicks played.
+* **controlled**: the distance-controlled kick (issue 14): KickToward with ``distance_m``, 3 times for each
+  requested distance of CONTROLLED_DISTANCES_M (2-8 m), from placements drawn as the skill trials'; the
+  ball's rest distance from its start against the request (error [m], within ±CONTROLLED_TOLERANCE_M).
 * **kick challenge** (magmaChallenge v3.2, REFERENCE §8.2): 10 attempts toward (0, 0), the ball at seeded
   distances from 3 to 12 m in the own half within ±45°, the robot 1 m behind it facing it; KickToward with
   the strong kick when the ball is farther than halfway between the two kicks' mean distances. An attempt
@@ -37,7 +40,8 @@ from motion_studio.kick_rollout import SETTLE_CYCLES, STRIKE_SPEED_M_S, Placemen
 from motion_studio.scenarios import Scenario
 from agent.protocol.constants import CYCLE_S
 
-TARGETS = {"kick_m": 3.0, "kick_strong_m": 5.5, "aim_m": 8.0, "falls": 0}
+TARGETS = {"kick_m": 3.0, "kick_strong_m": 5.5, "aim_m": 8.0, "falls": 0, "long_kick_m": 8.0,
+           "controlled_error_m": 1.0}
 KINDS = ("kick", "kick_strong")
 KICKS_PER_KIND, KICKS_PER_KIND_QUICK = 10, 2
 #: Motion trials: uniform placement error half-ranges (forward m, left m, heading deg).
@@ -48,6 +52,11 @@ SKILL_SPREAD = ((-0.01, 0.08), (-0.05, 0.05), (-10.0, 10.0))
 SKILL_TRIALS, SKILL_TRIALS_QUICK = 6, 1
 SKILL_LIMIT_S = 25.0
 SKILL_TARGET_AHEAD_M = 10.0
+#: Requested distances of the controlled kick [m] (issue 14: within +-1 m over 2-8 m) and its tolerance [m].
+CONTROLLED_DISTANCES_M = (2.0, 3.0, 4.0, 5.0, 6.0, 8.0)
+CONTROLLED_DISTANCES_M_QUICK = (2.0, 4.0)
+CONTROLLED_TRIALS_PER_REQUEST, CONTROLLED_TRIALS_PER_REQUEST_QUICK = 3, 1
+CONTROLLED_TOLERANCE_M = TARGETS["controlled_error_m"]
 #: REFERENCE §8.2 kick challenge.
 CHALLENGE_ATTEMPTS, CHALLENGE_ATTEMPTS_QUICK = 10, 1
 CHALLENGE_CIRCLE_M = 2.0
@@ -141,9 +150,10 @@ def skill_run(scenario: Scenario, skill: KickToward, ball_m: tuple[float, float]
 
 
 def skill_trial(error: tuple[float, float, float], strong: bool, seed: int, library: MotionLibrary,
-                limit_s: float = SKILL_LIMIT_S, robot_type: int = 0) -> dict:
-    """KickToward toward a point SKILL_TARGET_AHEAD_M ahead, the robot standing at the right foot's kick
-    spot moved by ``error`` (ball forward m, ball left m, robot heading deg off the aim)."""
+                limit_s: float = SKILL_LIMIT_S, robot_type: int = 0, distance_m: float | None = None) -> dict:
+    """KickToward toward a point SKILL_TARGET_AHEAD_M ahead (``distance_m`` ahead, and asked for that distance,
+    when given), the robot standing at the right foot's kick spot moved by ``error`` (ball forward m, ball
+    left m, robot heading deg off the aim)."""
     spot = library.get("kick").constants
     scenario = _skill_scenario((-3.0, 0.0), error[2], seed, library, robot_type=robot_type)
     truth = scenario.truth()
@@ -151,8 +161,9 @@ def skill_trial(error: tuple[float, float, float], strong: bool, seed: int, libr
                      truth.heading_deg - error[2])
     scenario.place_ball(ball)
     aim = math.radians(truth.heading_deg - error[2])
-    target = (ball[0] + SKILL_TARGET_AHEAD_M * math.cos(aim), ball[1] + SKILL_TARGET_AHEAD_M * math.sin(aim))
-    return skill_run(scenario, KickToward(*target, strong=strong), ball, target, limit_s)
+    ahead = SKILL_TARGET_AHEAD_M if distance_m is None else distance_m
+    target = (ball[0] + ahead * math.cos(aim), ball[1] + ahead * math.sin(aim))
+    return skill_run(scenario, KickToward(*target, strong=strong, distance_m=distance_m), ball, target, limit_s)
 
 
 def skill_trials(count: int, seed: int, library: MotionLibrary, tick: Callable[[], None],
@@ -167,6 +178,32 @@ def skill_trials(count: int, seed: int, library: MotionLibrary, tick: Callable[[
         trials.append({"strong": strong, "placement": [round(v, 3) for v in error], **trial})
         tick()
     return trials
+
+
+def controlled_trials(distances_m: tuple[float, ...], seed: int, library: MotionLibrary, tick: Callable[[], None],
+                      robot_type: int = 0, per_request: int = 1) -> list[dict]:
+    """The distance-controlled kick: ``per_request`` KickTowards with ``distance_m`` per requested distance, from
+    seeded placements as the skill trials'; each trial adds the request and the error of the rest distance [m]."""
+    rng = np.random.default_rng([seed, 13])
+    trials = []
+    for i, requested in enumerate(d for d in distances_m for _ in range(per_request)):
+        error = tuple(float(rng.uniform(low, high)) for low, high in SKILL_SPREAD)
+        trial = skill_trial(error, False, seed + i, library, robot_type=robot_type, distance_m=requested)
+        trials.append({"requested_m": requested, "error_m": round(trial["distance_m"] - requested, 3),
+                       "placement": [round(v, 3) for v in error], **trial})
+        tick()
+    return trials
+
+
+def controlled_summary(trials: list[dict]) -> dict:
+    """Mean and largest absolute distance error [m] and the trials within CONTROLLED_TOLERANCE_M."""
+    errors = [abs(t["error_m"]) for t in trials]
+    return {"requests": len(trials), "error_mean_abs_m": round(float(np.mean(errors)), 2) if errors else None,
+            "error_max_abs_m": round(float(np.max(errors)), 2) if errors else None,
+            "within_tolerance": sum(e <= CONTROLLED_TOLERANCE_M for e in errors),
+            "tolerance_m": CONTROLLED_TOLERANCE_M, "falls": sum(bool(t["fell"]) for t in trials),
+            "by_request_m": {f"{d:g}": [t["distance_m"] for t in trials if t["requested_m"] == d]
+                             for d in dict.fromkeys(t["requested_m"] for t in trials)}}
 
 
 def challenge_attempt(distance_m: float, angle_deg: float, strong: bool, seed: int, library: MotionLibrary,
@@ -229,7 +266,9 @@ def run(quick: bool = False, seed: int = 0, progress: Callable[[int, int], None]
     per_kind = KICKS_PER_KIND_QUICK if quick else KICKS_PER_KIND
     skills = SKILL_TRIALS_QUICK if quick else SKILL_TRIALS
     attempts = CHALLENGE_ATTEMPTS_QUICK if quick else CHALLENGE_ATTEMPTS
-    total = per_kind * len(KINDS) + skills + attempts
+    requests = CONTROLLED_DISTANCES_M_QUICK if quick else CONTROLLED_DISTANCES_M
+    per_request = CONTROLLED_TRIALS_PER_REQUEST_QUICK if quick else CONTROLLED_TRIALS_PER_REQUEST
+    total = per_kind * len(KINDS) + skills + len(requests) * per_request + attempts
     done = 0
 
     def tick() -> None:
@@ -243,6 +282,7 @@ def run(quick: bool = False, seed: int = 0, progress: Callable[[int, int], None]
     skill = skill_trials(skills, seed, library, tick, robot_type)
     skill_summary = summary(skill)
     skill_summary["kicked"] = sum(t["kicked"] for t in skill)
+    controlled = controlled_trials(requests, seed, library, tick, robot_type, per_request)
     strong_from = (summaries["kick"]["distance_mean_m"] + summaries["kick_strong"]["distance_mean_m"]) / 2
     kick_challenge = challenge(attempts, seed, library, strong_from, tick, robot_type)
     kick, strong = summaries["kick"], summaries["kick_strong"]
@@ -251,12 +291,16 @@ def run(quick: bool = False, seed: int = 0, progress: Callable[[int, int], None]
         "kick_strong_m": strong["distance_mean_m"] >= TARGETS["kick_strong_m"],
         "aim_m": strong["distance_mean_m"] >= TARGETS["aim_m"],
         "falls": kick["falls"] + strong["falls"] + skill_summary["falls"] <= TARGETS["falls"],
+        "long_kick_m": max(kick["distance_mean_m"], strong["distance_mean_m"]) >= TARGETS["long_kick_m"],
+        "controlled_error_m": all(abs(t["error_m"]) <= TARGETS["controlled_error_m"] for t in controlled),
     }
     return {"robot_type": robot_type, "quick": quick, "seed": seed, "score": kick_challenge["score_m"],
             "score_kind": "magmaChallenge kick challenge (REFERENCE 8.2): mean rest distance from (0, 0) [m], lower "
                           "is better",
             "targets": TARGETS, "passed": passed, "kick": kick, "kick_strong": strong, "skill": skill_summary,
-            "challenge": kick_challenge, "trials": {**motions, "skill": skill}}
+            "long_kick_m": max(kick["distance_mean_m"], strong["distance_mean_m"]),
+            "controlled": controlled_summary(controlled), "challenge": kick_challenge,
+            "trials": {**motions, "skill": skill, "controlled": controlled}}
 
 
 def plot(result: dict, out_dir: pathlib.Path) -> list[pathlib.Path]:
@@ -268,7 +312,7 @@ def plot(result: dict, out_dir: pathlib.Path) -> list[pathlib.Path]:
     import matplotlib.pyplot as plt
 
     out_dir.mkdir(parents=True, exist_ok=True)
-    fig, (ax_top, ax_hist) = plt.subplots(1, 2, figsize=(13, 5))
+    fig, (ax_top, ax_hist, ax_controlled) = plt.subplots(1, 3, figsize=(19, 5))
     colours = {"kick": "tab:blue", "kick_strong": "tab:red"}
     for kind in KINDS:
         trials = result["trials"][kind]
@@ -298,6 +342,7 @@ def plot(result: dict, out_dir: pathlib.Path) -> list[pathlib.Path]:
     ax_hist.set_ylabel("kicks")
     ax_hist.set_title(f"distance (challenge score {result['score']} m)")
     ax_hist.legend(fontsize=8)
+    _plot_controlled(ax_controlled, result["trials"].get("controlled", []))
     fig.tight_layout()
     path = out_dir / f"kick_type{result.get('robot_type', 0)}.png"
     fig.savefig(path, dpi=110)
@@ -305,7 +350,24 @@ def plot(result: dict, out_dir: pathlib.Path) -> list[pathlib.Path]:
     return [path]
 
 
-
+def _plot_controlled(ax, trials: list[dict]) -> None:
+    """Requested against reached distance of the controlled kick, with the +-tolerance band."""
+    if not trials:
+        ax.set_visible(False)
+        return
+    requested = [t["requested_m"] for t in trials]
+    top = max(max(requested), max(t["distance_m"] for t in trials)) + 1.0
+    line = np.array([0.0, top])
+    ax.plot(line, line, color="0.4", lw=1, label="reached = requested")
+    ax.fill_between(line, line - CONTROLLED_TOLERANCE_M, line + CONTROLLED_TOLERANCE_M, color="0.85",
+                    label=f"+-{CONTROLLED_TOLERANCE_M:g} m")
+    ax.scatter(requested, [t["distance_m"] for t in trials], color="tab:green", zorder=3, label="kicks")
+    ax.set_xlabel("requested distance [m]")
+    ax.set_ylabel("ball rest distance [m]")
+    ax.set_title("distance-controlled kick")
+    ax.set_xlim(0, top)
+    ax.set_ylim(0, top)
+    ax.legend(fontsize=8)
 
 
 def main(argv: list[str] | None = None) -> None:
@@ -329,8 +391,7 @@ def main(argv: list[str] | None = None) -> None:
     print(json.dumps({k: v for k, v in result.items() if k != "trials"}, indent=1))
 
 
-__all__ = ["TARGETS", "challenge", "main", "motion_trials", "plot", "run", "skill_run", "skill_trial", "summary"]
-
+__all__ = ["TARGETS", "challenge", "controlled_summary", "controlled_trials", "main", "motion_trials", "plot", "run", "skill_run", "skill_trial", "summary"]
 
 if __name__ == "__main__":
     main()

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import pytest
 
-from agent.motion.dynamic import TurnGain, WalkLean, load_dynamic_params
+from agent.motion.dynamic import KickDistance, TurnGain, WalkLean, load_dynamic_params
 
 
 def test_a_turn_gain_curve_through_points_interpolates_and_inverts():
@@ -36,3 +36,29 @@ def test_the_lean_command_curve_shapes_both_sides_alike():
 def test_the_shipped_file_has_no_tuned_shapes_yet():
     dynamic = load_dynamic_params()
     assert dynamic.walk_lean.command_points == () and dynamic.turn_gain.request_points_deg == ()
+
+
+def test_a_kick_distance_request_gets_the_stretch_of_the_nearest_measured_distance():
+    table = KickDistance(motions=("kick",), distance_points_m=(1.0, 2.5, 4.0), stretch=(3.0, 2.0, 1.0))
+    assert [table.stretch_for(d) for d in (0.2, 1.7, 1.75, 1.8, 3.2, 9.0)] == [3.0, 3.0, 3.0, 2.0, 2.0, 1.0]
+    assert table.expected_distance_m(3.3) == 4.0 and table.expected_distance_m(3.2) == 2.5
+    assert table.applies("kick", "strike") and not table.applies("kick", "land")
+    assert not table.applies("kick_strong", "strike")
+
+
+@pytest.mark.parametrize(("points", "stretch", "words"), [
+    ((1.0, 2.0), (1.0, 2.0), "must not increase"),
+    ((1.0, 2.0), (2.0, 0.5), ">= 1"),
+    ((2.0, 2.0), (2.0, 1.0), "increase strictly"),
+    ((1.0, 2.0), (2.0,), "same non-zero length"),
+])
+def test_a_kick_distance_table_that_cannot_be_played_is_refused(points, stretch, words):
+    with pytest.raises(ValueError, match=words):
+        KickDistance(motions=("kick",), distance_points_m=points, stretch=stretch)
+
+
+def test_the_shipped_kick_distance_table_spans_the_short_passes_to_the_full_kick():
+    table = load_dynamic_params().kick_distance
+    assert set(table.motions) == {"kick", "kick_left"}
+    assert table.stretch[-1] == 1.0  # the longest request plays the kick as authored
+    assert table.distance_points_m[0] < 1.5 and table.distance_points_m[-1] > 3.5

@@ -9,6 +9,7 @@ import pytest
 
 from agent.motion import (ControllerConfig, DynamicParams, MotionController, MotionLibrary, MotionRequest, Slowdown,
                           WalkLean, WebotsTiming)
+from agent.motion.dynamic import KickDistance
 from motions import WEBOTS, XML, JointTarget, Keyframe, Motion
 
 DT = 0.02
@@ -258,3 +259,21 @@ def test_last_request_is_the_request_posted_last():
     assert controller.last_request == MotionRequest(None)
     controller.request(MotionRequest(None, lean=0.5))
     assert controller.last_request.lean == 0.5
+
+
+def test_a_kick_distance_request_stretches_only_the_named_phases_of_the_named_kicks():
+    def kick(name):
+        return xml_motion(name, [phase("windup", 60, {"llj3": 10}, next="swing"),
+                                 phase("swing", 40, {"llj3": 20}, next="strike"),
+                                 phase("strike", 60, {"llj3": 30}, next="land"),
+                                 phase("land", 40, {"llj3": 0})])
+
+    table = KickDistance(motions=("kick",), distance_points_m=(1.0, 4.0), stretch=(2.0, 1.0))
+    controller = controller_for(kick("kick"), kick("other"), dynamic=DynamicParams(kick_distance=table))
+    short = play(controller, MotionRequest("kick", distance_m=1.2), 15) + play(controller, None, 1)
+    assert short == ["windup"] * 3 + ["swing"] * 4 + ["strike"] * 6 + ["land"] * 2 + [None]
+    full = play(controller, MotionRequest("kick", distance_m=3.5), 10) + play(controller, None, 1)
+    assert full == ["windup"] * 3 + ["swing"] * 2 + ["strike"] * 3 + ["land"] * 2 + [None]  # nearest row: 4 m
+    assert play(controller, MotionRequest("kick"), 10) + play(controller, None, 1) == full
+    other = play(controller, MotionRequest("other", distance_m=1.2), 10) + play(controller, None, 1)
+    assert other == full  # not one of the table's motions
