@@ -2,10 +2,10 @@
 robots of one type and 9 of any two).
 
 Why 0, 2 and 4: those are the types whose every skill works on both servers. Types 1 and 3 (longer legs) stand
-up from both sides since 2026-11-26 (their own stand-ups, ``motions/authoring/standup_types.py``) and type 1 kicks
-3.86 m on the real server with its own kick since 2026-11-27 (``motions/authoring/kick_types.py``), but type 3's
-kick still grazes the ball there (0.33 m against 3.5-4.2 m for types 0, 2 and 4; ``motion-studio real skills kick
---type N``) and the dribble of both did not bring the ball 10 m in 45 s there. The types cycle by uniform number, so every team size from 3 up is legal
+up from both sides since 2026-11-26 (their own stand-ups, ``motions/authoring/standup_types.py``), but the shared
+kick, whose spot is type 0's, grazes the ball with them on the real server (0.36 and 0.33 m against 3.5-4.2 m for
+types 0, 2 and 4; ``motion-studio real skills kick --type N``) and their dribble did not bring the ball 10 m in
+45 s there. The types cycle by uniform number, so every team size from 3 up is legal
 (11 players: four of type 0, four of type 2, three of type 4) and the goalkeeper (unum 1) is type 0, the
 type every motion was tuned on.
 """
