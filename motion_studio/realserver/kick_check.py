@@ -94,6 +94,8 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("--out", type=Path, default=Path("out/kick_check"), help="the real server's logs")
     parser.add_argument("--json", type=Path, help="also write the rows and the summary as JSON")
     parser.add_argument("--ours-only", action="store_true", help="our simulator only (no real server)")
+    parser.add_argument("--type", type=int, default=0, choices=range(5), dest="robot_type",
+                        help="robot type that kicks, with that type's motions (default 0)")
     args = parser.parse_args(argv)
     offsets = [float(value) / 100.0 for value in args.offsets_cm.split(",") if value.strip()]
     if not args.ours_only:
@@ -101,15 +103,17 @@ def main(argv: list[str] | None = None) -> None:
 
         ensure_private_network("motion_studio.realserver.kick_check", list(argv) if argv is not None else sys.argv[1:])
     source = motion_source(args.motions_rev, Path(tempfile.mkdtemp(prefix="motions_")))
-    library = source.library()
-    servers: dict[str, Rollout] = {"ours": lambda lib, motion, placement: run_kick(lib, motion, placement)}
+    library = source.library(args.robot_type)
+    robot_type = args.robot_type
+    servers: dict[str, Rollout] = {
+        "ours": lambda lib, motion, placement: run_kick(lib, motion, placement, robot_type=robot_type)}
     print(f"motions: {source.revision}", flush=True)
     if args.ours_only:
         rows = measure_kicks(library, args.motions, offsets, servers, lambda text: print(text, flush=True))
     else:
         from motion_studio.realserver.rollout_kick import RealKickBench
 
-        with RealKickBench(args.out) as bench:
+        with RealKickBench(args.out, robot_type=robot_type) as bench:
             servers = {"real": lambda lib, motion, placement: bench.run(lib, motion, placement).run, **servers}
             rows = measure_kicks(library, args.motions, offsets, servers, lambda text: print(text, flush=True))
     print(table(rows))

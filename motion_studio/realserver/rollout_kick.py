@@ -134,8 +134,9 @@ class _Session(RealSession):
     """The kick bench's session: trainer commands queued to land in a fixed cycle, the game time read from
     each sense message."""
 
-    def __init__(self, scripts: Path, workdir: Path, behavior: Callable[[WorldModel], list[Action]]) -> None:
-        super().__init__(scripts, workdir, behavior, TEAM, UNUM)
+    def __init__(self, scripts: Path, workdir: Path, behavior: Callable[[WorldModel], list[Action]],
+                 robot_type: int = 0) -> None:
+        super().__init__(scripts, workdir, behavior, TEAM, UNUM, robot_type)
         self.game_time_s = 0.0
         self._commands: list[str] = []
 
@@ -272,14 +273,16 @@ class RealKickBench:
         config: where the robot stands, how long it stands.
         scripts: the real-server scripts (default: motion_studio.realserver.paths.scripts_dir()).
         dynamic: the controller's dynamic elements (default: the shipped ones).
+        robot_type: the robot (0-4) that kicks; ``library`` must hold that type's motions.
 
     Raises:
         RealServerError: the scripts are missing.
     """
 
     def __init__(self, workdir: Path, config: RealKickConfig | None = None, scripts: Path | None = None,
-                 dynamic: DynamicParams | None = None) -> None:
+                 dynamic: DynamicParams | None = None, robot_type: int = 0) -> None:
         self.dynamic = dynamic
+        self.robot_type = robot_type
         self.scripts = checked_scripts_dir(scripts)
         self.workdir = Path(workdir)
         self.config = config or RealKickConfig()
@@ -301,8 +304,8 @@ class RealKickBench:
         return actions
 
     def _open(self, library: MotionLibrary) -> None:
-        self.behavior = SkillBehavior(None, None, 0, recover_falls=False)
-        self.session = _Session(self.scripts, self.workdir, self._behave)
+        self.behavior = SkillBehavior(None, None, self.robot_type, recover_falls=False)
+        self.session = _Session(self.scripts, self.workdir, self._behave, self.robot_type)
         for _ in range(6):  # scene, init
             self.session.step()
         # two resets first: every kick then starts from a reset of a robot standing in its stance (measured:
@@ -373,7 +376,7 @@ class RealKickBench:
         """A fresh controller plays ``stand`` where the robot is, the ball is parked, the robot is moved upright
         to the spot facing ``heading_deg`` and stands there ``settle_cycles``."""
         config, session = self.config, self.session
-        self.behavior.motion = MotionController(library, self.dynamic or load_dynamic_params(), 0)
+        self.behavior.motion = MotionController(library, self.dynamic or load_dynamic_params(), self.robot_type)
         sx, sy = config.spot_m
         session.command(f"(ball (pos {sx + config.park_ball_m[0]} {sy + config.park_ball_m[1]} {BALL_Z_M})"
                         f"(vel 0 0 0))")
