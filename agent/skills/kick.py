@@ -30,6 +30,7 @@ from __future__ import annotations
 
 import logging
 import math
+from dataclasses import replace
 
 from agent.motion import MotionController, MotionRequest
 from agent.skills.base import Skill
@@ -83,7 +84,8 @@ class KickToward(Skill):
         config: tolerances and moves.
         distance_m: the ball distance wanted [m] (the distance-controlled kick: the kick's strike is slowed by
             the controller's kick-distance table, ``agent.motion.dynamic.KickDistance``); None = as far as the
-            kick goes. Implies the normal kick, whose table it is.
+            kick goes. Implies the normal kick, whose table it is, and a loose window no farther than
+            ``KickConfig.controlled_loose_forward_max_m``.
 
     After ``done``: ``kicked`` says whether a kick was played, ``foot`` which motion, ``reason`` why it
     stopped without kicking, ``kick_started_s`` the server time the kick motion was first requested.
@@ -100,6 +102,9 @@ class KickToward(Skill):
         self.distance_m = distance_m
         self.strong = strong and distance_m is None
         self.config = config or KickConfig()
+        if distance_m is not None:  # an accurate kick waits for a placement its table was measured on
+            self.config = replace(self.config, loose_forward_max_m=min(self.config.loose_forward_max_m,
+                                                                       self.config.controlled_loose_forward_max_m))
         reach = f" {distance_m:.1f} m" if distance_m is not None else ""
         self.name = f"kick{' strong' if self.strong else ''}{reach} toward ({target_x_m:.1f}, {target_y_m:.1f})"
         self.reset()

@@ -135,3 +135,19 @@ def test_the_controlled_kick_summary_counts_errors_against_each_request():
     assert figures["within_tolerance"] == 1 and figures["falls"] == 1
     assert figures["error_mean_abs_m"] == pytest.approx(2.03, abs=0.01) and figures["error_max_abs_m"] == 3.9
     assert figures["by_request_m"] == {"2": [2.6, 0.4], "8": [4.1]}
+
+
+def test_a_controlled_kick_steps_up_to_a_ball_6cm_beyond_its_spot(library):
+    """The ball 6 cm beyond the right foot's spot, KickToward asked for 2 m: the distance-controlled kick takes
+    kick steps first (its table holds for the ball within 2 cm) and the ball rests within 1 m of 2 m. With the
+    loose window reaching 8 cm (the full kick's: KickConfig(controlled_loose_forward_max_m=0.08)) it kicked at
+    once from there and the ball stopped 0.5 m away."""
+    spot = library.get("kick").constants
+    scenario = _skill_scenario((-4.0, 0.0), 0.0, seed=0, library=library)
+    truth = scenario.truth()
+    ball = ball_spot(truth, spot["ball_forward_m"] + 0.06, spot["ball_left_m"], 0.0)
+    scenario.place_ball(ball)
+    skill = KickToward(ball[0] + 2.0, ball[1], distance_m=2.0)
+    result = skill_run(scenario, skill, ball, (ball[0] + 2.0, ball[1]), LIMIT_S)
+    assert skill.kicked and abs(result["distance_m"] - 2.0) <= 1.0, result
+    assert skill.corrections >= 1 and not result["fell"], result
