@@ -167,10 +167,41 @@ def _ours(library: MotionLibrary, motion: str, placement: Placement, dynamic: Dy
     return run_kick(library, motion, placement, dynamic=dynamic, distance_m=1.0)
 
 
+PROGRAM = "python -m motion_studio.realserver.kick_distance"
+
+
 def main(argv: list[str] | None = None) -> int:
-    argv = list(argv) if argv is not None else sys.argv[1:]
-    parser = argparse.ArgumentParser(prog="python -m motion_studio.realserver.kick_distance",
-                                     description=__doc__.splitlines()[0])
+    """Run the sweep (see the module docstring); any error is one line on stderr and exit code 2."""
+    from motion_studio.realserver.errors import RealServerError
+    from motion_studio.tuning.errors import TuningError
+
+    try:
+        return _main(list(argv) if argv is not None else sys.argv[1:])
+    except (ValueError, OSError, RealServerError, TuningError) as error:
+        print(f"{PROGRAM}: error: {error}", file=sys.stderr)
+        return 2
+
+
+def _read_rows(path: Path) -> list[dict]:
+    """The kicks kept by an earlier run (none if the file is missing).
+
+    Raises:
+        ValueError: the file is not a JSON list of kick rows (names the file).
+    """
+    if not path.exists():
+        return []
+    try:
+        rows = json.loads(path.read_text())
+    except json.JSONDecodeError as error:
+        raise ValueError(f"{path}: not JSON ({error}); move it away to start afresh") from None
+    if not isinstance(rows, list) or any(not isinstance(r, dict) or not {"stretch", "motion", "offset_m", "server",
+                                                                         "distance_m"} <= set(r) for r in rows):
+        raise ValueError(f"{path}: not a list of kick rows (stretch, motion, offset_m, server, distance_m)")
+    return rows
+
+
+def _main(argv: list[str]) -> int:
+    parser = argparse.ArgumentParser(prog=PROGRAM, description=__doc__.splitlines()[0])
     parser.add_argument("--stretches", default="1,1.9,2.1,2.25,3",
                         help="stretch factors of the strike phases to measure, comma-separated (>= 1)")
     parser.add_argument("--offsets-cm", default=",".join(f"{o * 100:g}" for o in OFFSETS_M),
@@ -186,11 +217,11 @@ def main(argv: list[str] | None = None) -> int:
         stretches = [float(v) for v in args.stretches.split(",") if v.strip()]
         offsets = [float(v) / 100.0 for v in args.offsets_cm.split(",") if v.strip()]
     except ValueError as error:
-        parser.error(f"--stretches / --offsets-cm take comma-separated numbers: {error}")
-    if any(not s >= 1.0 for s in stretches):
-        parser.error(f"every stretch must be >= 1, got {stretches}")
+        raise ValueError(f"--stretches / --offsets-cm take comma-separated numbers: {error}") from None
+    if not stretches or any(not s >= 1.0 for s in stretches):
+        raise ValueError(f"--stretches: every stretch must be >= 1, got {stretches}")
     rows_path = args.rows or args.out / "rows.json"
-    rows: list[dict] = json.loads(rows_path.read_text()) if rows_path.exists() else []
+    rows = _read_rows(rows_path)
     if not args.ours_only and missing(rows, stretches, offsets, "real"):
         from motion_studio.realserver.rollout_kick import ensure_private_network
 

@@ -49,3 +49,22 @@ def test_a_written_table_loads_back_and_the_other_sections_stay(tmp_path):
     assert after.kick_distance == table
     assert (after.walk_lean, after.slowdown, after.turn_gain) == (before.walk_lean, before.slowdown, before.turn_gain)
     assert path.read_text().startswith(DEFAULT_PARAMS_PATH.read_text().split("[walk_lean]")[0])
+
+
+@pytest.mark.parametrize(("args", "words"), [
+    (["--stretches", "1,fast"], "--stretches / --offsets-cm take comma-separated numbers"),
+    (["--stretches", "0.5"], "every stretch must be >= 1"),
+])
+def test_bad_arguments_are_one_line(tmp_path, capsys, args, words):
+    assert kick_distance.main(["--ours-only", "--out", str(tmp_path), *args]) == 2
+    err = capsys.readouterr().err
+    assert words in err and len(err.strip().splitlines()) == 1
+
+
+def test_a_corrupt_rows_file_is_named_and_kept(tmp_path, capsys):
+    rows = tmp_path / "rows.json"
+    rows.write_text('[{"stretch": 1.0')
+    assert kick_distance.main(["--ours-only", "--out", str(tmp_path), "--stretches", "1"]) == 2
+    err = capsys.readouterr().err
+    assert str(rows) in err and len(err.strip().splitlines()) == 1
+    assert rows.read_text() == '[{"stretch": 1.0'  # nothing lost
