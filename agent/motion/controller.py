@@ -28,7 +28,7 @@ Playback (REFERENCE §6, thesis controller):
 * Slowdown (REFERENCE §7.2): after a stop request, the phases of a walk (a motion with a ``speed_m_s``
   constant) are stretched by the slowdown curve.
 * Kick distance: a request with ``distance_m`` stretches the strike phases of the kicks the kick-distance
-  curve names (a slower swing, a shorter kick).
+  table names (a slower swing, a shorter kick).
 
 Joint targets are kept ``joint_margin_deg`` inside the joint limits: at a stop the server ignores new
 commands (REFERENCE §2.2), so a joint driven into its stop could never leave it.
@@ -79,7 +79,7 @@ class MotionRequest:
     head_deg: (yaw, pitch) targets of the head joints in SimSpark degrees, or None to let the motion
         drive them.
     interrupt: drop the current motion at once (no finalize), e.g. for a stand-up after a fall.
-    distance_m: the ball distance a kick should reach [m] (the kick-distance curve gives its strike's
+    distance_m: the ball distance a kick should reach [m] (the kick-distance table gives its strike's
         stretch); None = the kick as authored (its full distance).
     """
 

@@ -186,7 +186,7 @@ class KickDistance:
 
     Why the timing: the swing and strike phases are shorter than the joints can follow (they run at their
     speed limits through the contact), so stretching them lowers the foot's speed at the contact, and the ball
-    goes about 1 m per m/s it is launched with (REFERENCE §4, the real ball roll); the kick's poses, and with
+    rolls about 0.68 m per m/s it is launched with (measured on the real server, issue 12); the kick's poses, and with
     them its line-up and balance, stay the same. The table is measured: each stretch with the distance it
     gave (``distance_points_m`` increasing, ``stretch`` not increasing: a longer way needs a faster swing). A
     request gets the stretch of the nearest measured distance, never one in between: the phases last whole

@@ -183,14 +183,18 @@ def skill_trials(count: int, seed: int, library: MotionLibrary, tick: Callable[[
 def controlled_trials(distances_m: tuple[float, ...], seed: int, library: MotionLibrary, tick: Callable[[], None],
                       robot_type: int = 0, per_request: int = 1) -> list[dict]:
     """The distance-controlled kick: ``per_request`` KickTowards with ``distance_m`` per requested distance, from
-    seeded placements as the skill trials'; each trial adds the request and the error of the rest distance [m]."""
+    seeded placements as the skill trials'; each trial adds the request, the distance the kick-distance table
+    expects for it (measured on the real server; requests beyond its longest row get that row) and the error of
+    the rest distance [m]."""
     rng = np.random.default_rng([seed, 13])
+    table = load_dynamic_params().kick_distance
     trials = []
     for i, requested in enumerate(d for d in distances_m for _ in range(per_request)):
         error = tuple(float(rng.uniform(low, high)) for low, high in SKILL_SPREAD)
         trial = skill_trial(error, False, seed + i, library, robot_type=robot_type, distance_m=requested)
         trials.append({"requested_m": requested, "error_m": round(trial["distance_m"] - requested, 3),
-                       "placement": [round(v, 3) for v in error], **trial})
+                       "table_m": table.expected_distance_m(requested), "placement": [round(v, 3) for v in error],
+                       **trial})
         tick()
     return trials
 
