@@ -26,7 +26,8 @@ from agent.motion.dynamic import DEFAULT_PARAMS_PATH, DynamicParams, WalkLean
 from motion_studio.lean_problem import (COMMANDS, QUICK_COMMANDS, QUICK_WALK_S, TARGET_DEG_M, WALK_S, lean_curve,
                                         lean_problem)
 from motion_studio.tuning import make_backend
-from motion_studio.tuning.params_file import Provenance, section_text, write_sections
+from motion_studio.tuning.dynamic_file import write_dynamic_section
+from motion_studio.tuning.params_file import Provenance, section_text
 from motion_studio.tuning.run_folder import default_run_dir
 from motion_studio.tuning.session import OPTIMIZERS, add_curve_run_options, one_line_errors, run_optimizer
 from motion_studio.walk_rollout import run_walk
@@ -85,17 +86,12 @@ def scan(base: DynamicParams, spec: str) -> tuple[WalkLean, str]:
 
 def write_lean(curve: WalkLean, path: Path = DEFAULT_PARAMS_PATH) -> None:
     """Rewrite ``[walk_lean]`` of ``path`` through the tuning room's writer (it must load back to ``curve``)."""
-    def check(written: Path) -> None:
-        loaded = load_dynamic_params(written).walk_lean
-        if loaded != curve:
-            raise ValueError(f"[walk_lean] reads back as {loaded}, expected {curve}")
-
     values = {"joint_offsets_deg": dict(curve.joint_offsets_deg), "speed_points_m_s": list(curve.speed_points_m_s),
               "speed_scale": list(curve.speed_scale), "phase_points": list(curve.phase_points),
               "phase_scale": list(curve.phase_scale), "provenance": curve.provenance}
     if curve.command_points:
         values.update(command_points=list(curve.command_points), command_scale=list(curve.command_scale))
-    write_sections(path, {"walk_lean": section_text("walk_lean", values)}, check)
+    write_dynamic_section("walk_lean", curve, section_text("walk_lean", values), path)
 
 
 @one_line_errors("motion-studio tune lean")

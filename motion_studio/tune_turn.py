@@ -33,7 +33,8 @@ import numpy as np
 from agent.motion.dynamic import DEFAULT_PARAMS_PATH, TurnGain, load_dynamic_params
 from motion_studio.skill_bench.turn import gain_sweep
 from motion_studio.tuning import make_backend
-from motion_studio.tuning.params_file import Provenance, replace_sections, toml_value, write_sections
+from motion_studio.tuning.dynamic_file import write_dynamic_section
+from motion_studio.tuning.params_file import Provenance, replace_sections, toml_value
 from motion_studio.tuning.run_folder import default_run_dir
 from motion_studio.tuning.session import OPTIMIZERS, add_curve_run_options, one_line_errors, run_optimizer
 from motion_studio.turn_problem import (CHECK_DEG, CHECK_QUICK_DEG, QUICK_POINTS_DEG, REQUEST_POINTS_DEG,
@@ -100,12 +101,7 @@ def write_curve(curve: TurnGain, path: Path = DEFAULT_PARAMS_PATH) -> None:
     Raises:
         TuningError: the rewritten file does not load back to the curve (the file is left unchanged).
     """
-    def check(written: Path) -> None:
-        loaded = load_dynamic_params(written).turn_gain
-        if loaded != curve:
-            raise ValueError(f"[turn_gain] reads back as {loaded}, expected {curve}")
-
-    write_sections(path, {"turn_gain": section_text(curve)}, check)
+    write_dynamic_section("turn_gain", curve, section_text(curve), path)
 
 
 def fit_main(args: argparse.Namespace) -> TurnGain:

@@ -24,7 +24,8 @@ from pathlib import Path
 from agent.motion import MotionLibrary, default_library, load_dynamic_params
 from agent.motion.dynamic import DEFAULT_PARAMS_PATH, DynamicParams, KickDistance
 from motion_studio.kick_rollout import KickRun, Placement, run_kick
-from motion_studio.tuning.params_file import Provenance, section_text, write_sections
+from motion_studio.tuning.dynamic_file import write_dynamic_section
+from motion_studio.tuning.params_file import Provenance, section_text
 
 #: The kicks measured (the mirrored kick shares the table).
 MOTIONS = ("kick", "kick_left")
@@ -112,14 +113,9 @@ def write_table(table: KickDistance, path: Path = DEFAULT_PARAMS_PATH) -> None:
     Raises:
         TuningError: the rewritten file does not load back to the table (the file is left unchanged).
     """
-    def check(written: Path) -> None:
-        loaded = load_dynamic_params(written).kick_distance
-        if loaded != table:
-            raise ValueError(f"[kick_distance] reads back as {loaded}, expected {table}")
-
     values = {f.name: getattr(table, f.name) for f in fields(table)}
     values = {key: list(value) if isinstance(value, tuple) else value for key, value in values.items()}
-    write_sections(path, {"kick_distance": section_text("kick_distance", values)}, check)
+    write_dynamic_section("kick_distance", table, section_text("kick_distance", values), path)
 
 
 def figures_text(figures: dict[str, dict[float, dict[str, float]]], judge: str) -> str:
