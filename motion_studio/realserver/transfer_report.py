@@ -8,7 +8,7 @@ from collections.abc import Collection
 from dataclasses import dataclass
 from pathlib import Path
 
-from motion_studio.realserver.cases import CYCLE_S
+from motion_studio.realserver.cases import CONTROLLED_KICK_M, CYCLE_S
 from motion_studio.realserver.transfer import (LIES_ON, STANDUP_CASES, WALK_20M, WALK_DIRECTIONS, Pair, Transfer,
                                                run_name)
 
@@ -26,6 +26,7 @@ SINGLE_ROWS = (
     ("kick_left", "ball travel [m]", "kick_left: distance [m]"),
     ("kick_strong", "ball travel [m]", "kick_strong: distance [m]"),
     ("kick_strong_left", "ball travel [m]", "kick_strong_left: distance [m]"),
+    *((f"kick_{d}m", "ball travel [m]", f"kick asked for {d} m: distance [m]") for d in CONTROLLED_KICK_M),
 )
 
 

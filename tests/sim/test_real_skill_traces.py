@@ -303,3 +303,26 @@ def test_same_kick_commands_move_the_ball_as_far() -> None:
                  for poses in (run.real, run.ours)]
     assert travelled[0] > 0.5  # measured 0.84 m
     assert travelled[1] == pytest.approx(travelled[0], rel=0.3)
+
+
+def test_the_distance_controlled_kick_s_real_commands_keep_their_order_on_ours() -> None:
+    # Recorded with ``motion-studio real skills kick_1m kick_2m kick_3m kick_4m --fixture`` (2026-11-27): the kick
+    # asked for 1-4 m (its strike stretched by the kick-distance table). The real balls went 0.83, 1.31, 2.21 and
+    # 4.09 m; the same commands move ours 1.36, 1.72, 2.95 and 3.88 m: the order holds and each lands within 1 m of
+    # the real ball, but the slow strikes carry 30-60 % farther here (a slow push grips in SimSpark's force-
+    # dependent slip, see the kick xfail below), so the table is the real server's, not ours. The two slow
+    # strikes stay upright open loop; after the 3 and 4 m strikes ours falls about 3 s into the case where the
+    # real robot stands, as with the shipped kick's own commands (the real kicking hip is thrown back after the
+    # strike, sim.physics_params "Ball contacts"): not asserted here.
+    travelled = []
+    for distance in (1, 2, 3, 4):
+        run = replay(f"kick_{distance}m")
+        end = max(run.real)
+        real, ours = (math.dist(poses[run.meta["skill_cycle"]].ball_m[:2], poses[end].ball_m[:2])
+                      for poses in (run.real, run.ours))
+        assert abs(ours - real) < 1.0, (distance, real, ours)
+        if distance <= 2:
+            assert upright(run.ours, range(run.meta["skill_cycle"], end + 1))
+        travelled.append((real, ours))
+    assert [r for r, _ in travelled] == sorted(r for r, _ in travelled)
+    assert [o for _, o in travelled] == sorted(o for _, o in travelled)
