@@ -60,6 +60,11 @@ _MIN_DISTANCE = np.array(MIN_DISTANCE_M)
 _HALF_FOV = np.array(HALF_FOV_DEG)
 _ONE = np.array(1.0)
 _SIGMA_DISTANCE = np.array(SIGMA_DISTANCE_PERCENT / 100.0)
+_FIXED_COUNT_ARRAY = np.array(_FIXED_COUNT, dtype=np.intp)
+_PARTS_ARRAY = np.array(_PARTS_PER_PLAYER, dtype=np.intp)
+_MINUS_ONE = np.array(-1, dtype=np.intp)
+_TWO = np.array(2, dtype=np.intp)
+_FOUR = np.array(4, dtype=np.intp)
 
 
 @dataclass(frozen=True)
@@ -254,6 +259,7 @@ class SeeWriter:
     def __init__(self, part_names: tuple[str, ...]) -> None:
         self.part_names = part_names
         self._players: tuple[tuple[str, int | None], ...] | None = None
+        self._owner_stride = np.array(_FIXED_COUNT + 1, dtype=np.intp)
         # Item tables for spelled numbers (True) and for printf (False), built for `_players`.
         self._items = {True: np.zeros(0, dtype=object), False: np.zeros(0, dtype=object)}
 
@@ -266,20 +272,22 @@ class SeeWriter:
         if players != self._players:
             self._items = {spelled: _item_table(players, self.part_names, spelled) for spelled in (True, False)}
             self._players = players
+            # An owner id per (observer, landmark or player): the point table has this many of them per observer.
+            self._owner_stride = np.array(len(players) + _FIXED_COUNT + 1, dtype=np.intp)
         seen_k, seen_p = sighting.seen_k, sighting.seen_p
         # A part opens its player when the previous seen point is not the same player's (or another
         # observer's), and closes it when the next one is not.
-        owner = seen_k * (len(players) + _FIXED_COUNT + 1) + np.maximum(seen_p - _FIXED_COUNT, -1) // _PARTS_PER_PLAYER
+        owner = seen_k * self._owner_stride + np.maximum(seen_p - _FIXED_COUNT_ARRAY, _MINUS_ONE) // _PARTS_ARRAY
         change = np.empty(owner.size + 1, dtype=bool)
         change[0] = change[-1] = True
         np.not_equal(owner[1:], owner[:-1], out=change[1:-1])
-        spelled = sighting.values.size + sighting.line_values.size >= SPELL_MIN_VALUES
-        items = self._items[spelled][seen_p * 4 + change[:-1] * 2 + change[1:]].tolist()
-        if spelled:   # every number spelled at once
-            values = spell_fixed2(sighting.values).ravel().tolist()
-            line_values = spell_fixed2(sighting.line_values).ravel().tolist()
-        else:
-            values, line_values = sighting.values.ravel().tolist(), sighting.line_values.ravel().tolist()
+        object_numbers = sighting.values.size
+        spelled = object_numbers + sighting.line_values.size >= SPELL_MIN_VALUES
+        items = self._items[spelled][seen_p * _FOUR + change[:-1] * _TWO + change[1:]].tolist()
+        # Every number of every frame in one list, objects then lines (spelled at once: one call, not two).
+        numbers = np.concatenate((sighting.values.ravel(), sighting.line_values.ravel()))
+        numbers = (spell_fixed2(numbers) if spelled else numbers).tolist()
+        values, line_values = numbers[:object_numbers], numbers[object_numbers:]
         separated_line = _SEPARATED_LINE[spelled]
         object_rows, line_rows = sighting.object_rows.tolist(), sighting.line_rows.tolist()
         out = []
