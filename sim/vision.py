@@ -65,6 +65,8 @@ _PARTS_ARRAY = np.array(_PARTS_PER_PLAYER, dtype=np.intp)
 _MINUS_ONE = np.array(-1, dtype=np.intp)
 _TWO = np.array(2, dtype=np.intp)
 _FOUR = np.array(4, dtype=np.intp)
+_PREFILTER_X = np.array(1.75)   # the field-of-view prefilter's slopes (see `observe`)
+_PREFILTER_Z = np.array(3.6)
 
 
 @dataclass(frozen=True)
@@ -175,7 +177,8 @@ def observe(cams_m: np.ndarray, rotations: np.ndarray, calibration_m: np.ndarray
         # run on about a third of the points: |θ| <= 60° needs y > 0 and |x| <= tan 60° y < 1.75 y, and then
         # |φ| <= 60° needs |z| <= tan 60° |(x, y)| < 3.6 y. Same result, with margin for rounding.
         x, y = flat[:, 0], flat[:, 1]
-        candidates = np.flatnonzero((y > 0.0) & (np.abs(x) <= 1.75 * y) & (np.abs(flat[:, 2]) <= 3.6 * y))
+        near_view = (y > _ZERO) & (np.abs(x) <= _PREFILTER_X * y) & (np.abs(flat[:, 2]) <= _PREFILTER_Z * y)
+        candidates = near_view.nonzero()[0]
         flat = flat[candidates]
     object_rows = flat.shape[0]
     if config.lines:
@@ -189,8 +192,8 @@ def observe(cams_m: np.ndarray, rotations: np.ndarray, calibration_m: np.ndarray
     objects = table[:object_rows]
     visible = ((objects[:, 0] > _MIN_DISTANCE) & (np.abs(objects[:, 1]) <= _HALF_FOV)
                & (np.abs(objects[:, 2]) <= _HALF_FOV))
-    seen = np.flatnonzero(visible)
-    seen_k, seen_p = np.divmod(seen if candidates is None else candidates[seen], object_count)
+    seen = visible.nonzero()[0]   # (np.flatnonzero of a 1-d array, without its Python wrapper)
+    seen_k, seen_p = np.divmod(seen if candidates is None else candidates[seen], np.array(object_count, dtype=np.intp))
     chosen = np.concatenate((objects[seen], table[object_rows:]))
     if config.noise:
         chosen = _noisy(chosen, rng)
