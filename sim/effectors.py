@@ -191,7 +191,8 @@ class MotorBank:
         """Like `command` for any robots at once: ``index`` are positions in the bank (block start + local)."""
         index = np.asarray(index, dtype=np.intp)
         angle = qpos[self.qadr[index]]
-        inside = (angle > self.min_rad[index]) & (angle < self.max_rad[index]) & (self.frozen_until[index] <= now_s)
+        now = np.array(now_s)   # (a 0-d array operand: see `_MIN_INERTIA`)
+        inside = (angle > self.min_rad[index]) & (angle < self.max_rad[index]) & (self.frozen_until[index] <= now)
         index = index[inside]
         limit = self.max_speed[index]
         self.target[index] = np.clip(np.asarray(value_rad_s, dtype=float)[inside], -limit, limit)
@@ -200,7 +201,7 @@ class MotorBank:
         """Like `command_many` with every motor of the bank commanded once, values in bank order: the same
         rules on whole arrays, without the gathers (every agent commanding every joint is the usual cycle)."""
         angle = qpos[self.qadr]
-        inside = (angle > self.min_rad) & (angle < self.max_rad) & (self.frozen_until <= now_s)
+        inside = (angle > self.min_rad) & (angle < self.max_rad) & (self.frozen_until <= np.array(now_s))
         # np.clip's definition, min(max(v, -limit), limit), without its Python wrapper (twice the cost here)
         clipped = np.minimum(np.maximum(value_rad_s, self._neg_max_speed), self.max_speed)
         np.copyto(self.target, clipped, where=inside)

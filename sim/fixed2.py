@@ -26,6 +26,13 @@ SPELL_MIN_VALUES = 128
 _SPELL = FIXED2.encode("ascii")
 # Two ulps of y bound (for normal y: ulp(y) <= |y| 2^-52); subnormal y are far from any half-integer.
 _TWO_ULPS = 4.5e-16
+# The scalar operands as 0-d arrays: numpy converts a Python number operand on every call, which costs about as
+# much as the operation itself on a cycle's few hundred values (the same values, so the same results).
+_HUNDRED = np.array(100.0)
+_HALF = np.array(0.5)
+_TWO_ULPS_ARRAY = np.array(_TWO_ULPS)
+_TABLE_END = np.array(float(FIXED2_TABLE_HUNDREDTHS))
+_NEGATIVE_OFFSET = np.array(FIXED2_TABLE_HUNDREDTHS, dtype=np.intp)
 
 
 @cache
@@ -42,18 +49,17 @@ def spell_fixed2(values: np.ndarray) -> np.ndarray:
         values: float64 array of any shape.
     """
     flat = values.ravel()
-    scaled = flat * 100.0
+    scaled = flat * _HUNDRED
     rounded = np.rint(scaled)
     magnitude = np.abs(rounded)
     # Not provably on one side of a half-hundredth, beyond the table, or not finite.
     with np.errstate(invalid="ignore"):   # inf - inf: such values are unsure anyway
-        unsure = (0.5 - np.abs(scaled - rounded) <= _TWO_ULPS * np.abs(scaled)) | \
-            ~(magnitude < FIXED2_TABLE_HUNDREDTHS)
-    odd = np.flatnonzero(unsure)
+        unsure = (_HALF - np.abs(scaled - rounded) <= _TWO_ULPS_ARRAY * np.abs(scaled)) | ~(magnitude < _TABLE_END)
+    odd = unsure.nonzero()[0]   # (np.flatnonzero of a 1-d array, without its Python wrapper)
     if odd.size:
         magnitude[odd] = 0.0
     index = magnitude.astype(np.intp)
-    index += np.signbit(flat) * FIXED2_TABLE_HUNDREDTHS
+    index += np.signbit(flat) * _NEGATIVE_OFFSET
     spelled = _table()[index]
     for i in odd.tolist():
         spelled[i] = _SPELL % float(flat[i])

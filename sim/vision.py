@@ -60,6 +60,13 @@ _MIN_DISTANCE = np.array(MIN_DISTANCE_M)
 _HALF_FOV = np.array(HALF_FOV_DEG)
 _ONE = np.array(1.0)
 _SIGMA_DISTANCE = np.array(SIGMA_DISTANCE_PERCENT / 100.0)
+_FIXED_COUNT_ARRAY = np.array(_FIXED_COUNT, dtype=np.intp)
+_PARTS_ARRAY = np.array(_PARTS_PER_PLAYER, dtype=np.intp)
+_MINUS_ONE = np.array(-1, dtype=np.intp)
+_TWO = np.array(2, dtype=np.intp)
+_FOUR = np.array(4, dtype=np.intp)
+_PREFILTER_X = np.array(1.75)   # the field-of-view prefilter's slopes (see `observe`)
+_PREFILTER_Z = np.array(3.6)
 
 
 @dataclass(frozen=True)
@@ -170,7 +177,8 @@ def observe(cams_m: np.ndarray, rotations: np.ndarray, calibration_m: np.ndarray
         # run on about a third of the points: |θ| <= 60° needs y > 0 and |x| <= tan 60° y < 1.75 y, and then
         # |φ| <= 60° needs |z| <= tan 60° |(x, y)| < 3.6 y. Same result, with margin for rounding.
         x, y = flat[:, 0], flat[:, 1]
-        candidates = np.flatnonzero((y > 0.0) & (np.abs(x) <= 1.75 * y) & (np.abs(flat[:, 2]) <= 3.6 * y))
+        near_view = (y > _ZERO) & (np.abs(x) <= _PREFILTER_X * y) & (np.abs(flat[:, 2]) <= _PREFILTER_Z * y)
+        candidates = near_view.nonzero()[0]
         flat = flat[candidates]
     object_rows = flat.shape[0]
     if config.lines:
@@ -184,8 +192,8 @@ def observe(cams_m: np.ndarray, rotations: np.ndarray, calibration_m: np.ndarray
     objects = table[:object_rows]
     visible = ((objects[:, 0] > _MIN_DISTANCE) & (np.abs(objects[:, 1]) <= _HALF_FOV)
                & (np.abs(objects[:, 2]) <= _HALF_FOV))
-    seen = np.flatnonzero(visible)
-    seen_k, seen_p = np.divmod(seen if candidates is None else candidates[seen], object_count)
+    seen = visible.nonzero()[0]   # (np.flatnonzero of a 1-d array, without its Python wrapper)
+    seen_k, seen_p = np.divmod(seen if candidates is None else candidates[seen], np.array(object_count, dtype=np.intp))
     chosen = np.concatenate((objects[seen], table[object_rows:]))
     if config.noise:
         chosen = _noisy(chosen, rng)
@@ -254,6 +262,7 @@ class SeeWriter:
     def __init__(self, part_names: tuple[str, ...]) -> None:
         self.part_names = part_names
         self._players: tuple[tuple[str, int | None], ...] | None = None
+        self._owner_stride = np.array(_FIXED_COUNT + 1, dtype=np.intp)
         # Item tables for spelled numbers (True) and for printf (False), built for `_players`.
         self._items = {True: np.zeros(0, dtype=object), False: np.zeros(0, dtype=object)}
 
@@ -266,20 +275,22 @@ class SeeWriter:
         if players != self._players:
             self._items = {spelled: _item_table(players, self.part_names, spelled) for spelled in (True, False)}
             self._players = players
+            # An owner id per (observer, landmark or player): the point table has this many of them per observer.
+            self._owner_stride = np.array(len(players) + _FIXED_COUNT + 1, dtype=np.intp)
         seen_k, seen_p = sighting.seen_k, sighting.seen_p
         # A part opens its player when the previous seen point is not the same player's (or another
         # observer's), and closes it when the next one is not.
-        owner = seen_k * (len(players) + _FIXED_COUNT + 1) + np.maximum(seen_p - _FIXED_COUNT, -1) // _PARTS_PER_PLAYER
+        owner = seen_k * self._owner_stride + np.maximum(seen_p - _FIXED_COUNT_ARRAY, _MINUS_ONE) // _PARTS_ARRAY
         change = np.empty(owner.size + 1, dtype=bool)
         change[0] = change[-1] = True
         np.not_equal(owner[1:], owner[:-1], out=change[1:-1])
-        spelled = sighting.values.size + sighting.line_values.size >= SPELL_MIN_VALUES
-        items = self._items[spelled][seen_p * 4 + change[:-1] * 2 + change[1:]].tolist()
-        if spelled:   # every number spelled at once
-            values = spell_fixed2(sighting.values).ravel().tolist()
-            line_values = spell_fixed2(sighting.line_values).ravel().tolist()
-        else:
-            values, line_values = sighting.values.ravel().tolist(), sighting.line_values.ravel().tolist()
+        object_numbers = sighting.values.size
+        spelled = object_numbers + sighting.line_values.size >= SPELL_MIN_VALUES
+        items = self._items[spelled][seen_p * _FOUR + change[:-1] * _TWO + change[1:]].tolist()
+        # Every number of every frame in one list, objects then lines (spelled at once: one call, not two).
+        numbers = np.concatenate((sighting.values.ravel(), sighting.line_values.ravel()))
+        numbers = (spell_fixed2(numbers) if spelled else numbers).tolist()
+        values, line_values = numbers[:object_numbers], numbers[object_numbers:]
         separated_line = _SEPARATED_LINE[spelled]
         object_rows, line_rows = sighting.object_rows.tolist(), sighting.line_rows.tolist()
         out = []

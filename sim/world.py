@@ -673,7 +673,7 @@ class World:
         if len(robots) < 2:   # no pair to find
             return
         first, second = owner[:, 0], owner[:, 1]
-        pair_rows = (first >= 0) & (second >= 0) & (first != second)
+        pair_rows = (first >= _FIRST_ROW) & (second >= _FIRST_ROW) & (first != second)
         if np.count_nonzero(pair_rows):
             found = set()
             for a, b in owner[pair_rows].tolist():

@@ -7,10 +7,12 @@ construction (the parser is on the hot path): treat them as read-only.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-from typing import NamedTuple
+from collections.abc import Callable
+from dataclasses import dataclass, field, fields
+from typing import Any, NamedTuple, TypeVar
 
 Vector3 = tuple[float, float, float]
+_Record = TypeVar("_Record")
 
 
 class Polar(NamedTuple):
@@ -230,3 +232,35 @@ class Sense:
     """Expressions skipped because their name (or a sub-item's key) is not known here."""
     order: tuple[str, ...] = field(default=(), compare=False)
     """Predicate names in wire order (entries of :data:`PREDICATE_NAMES`); () = the server's order."""
+
+
+def record_builder(cls: type[_Record]) -> Callable[..., _Record]:
+    """A function that builds a ``cls`` (a frozen, slotted dataclass of this module) from all its field values in
+    order: the same object as ``cls(*values)``, in about half the time.
+
+    Why: the parsers build six to eight of these per sense message, 50 times a second per agent, and a frozen
+    dataclass's ``__init__`` sets each field through ``object.__setattr__``, which looks the field up on every
+    call; the builder writes each field through its slot directly. None of these classes has a
+    ``__post_init__`` or a conversion in ``__init__`` that this would skip (tests compare both ways).
+    """
+    names = [item.name for item in fields(cls)]   # type: ignore[arg-type]
+    if tuple(names) != cls.__slots__:   # type: ignore[attr-defined]
+        raise TypeError(f"{cls.__name__}: fields {names} are not its slots")
+    scope: dict[str, Any] = {"new": object.__new__, "cls": cls}
+    scope.update((f"set_{name}", getattr(cls, name).__set__) for name in names)
+    arguments = ", ".join(names)
+    body = "".join(f"    set_{name}(record, {name})\n" for name in names)
+    exec(f"def build({arguments}):\n    record = new(cls)\n{body}    return record\n", scope)   # noqa: S102
+    return scope["build"]   # type: ignore[no-any-return]
+
+
+#: Builders of the records the parsers make every cycle (see `record_builder`).
+new_sense = record_builder(Sense)
+new_time = record_builder(TimePerceptor)
+new_game_state = record_builder(GameState)
+new_gyro = record_builder(Gyro)
+new_accelerometer = record_builder(Accelerometer)
+new_force_resistance = record_builder(ForceResistance)
+new_hear = record_builder(Hear)
+new_see = record_builder(See)
+new_visible_player = record_builder(VisiblePlayer)

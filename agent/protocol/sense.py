@@ -25,18 +25,23 @@ from agent.protocol.perceptors import (
     SEE_MYPOS,
     SEE_OBJECT,
     SEE_PLAYER,
-    Accelerometer,
     ForceResistance,
-    GameState,
-    Gyro,
     Hear,
     Polar,
     See,
     Sense,
-    TimePerceptor,
     VisibleLine,
     VisibleObject,
     VisiblePlayer,
+    new_accelerometer,
+    new_force_resistance,
+    new_game_state,
+    new_gyro,
+    new_hear,
+    new_see,
+    new_sense,
+    new_time,
+    new_visible_player,
 )
 from agent.protocol.sense_format import format_sense
 from agent.protocol.sense_shape import ShapeCache
@@ -165,34 +170,34 @@ def _parse_fast(text: str, raw: bytes) -> Sense | None:
             if name in frp:
                 return None
             a, b, c, d, e, f = map(float, m.group(2, 3, 4, 5, 6, 7))
-            frp[name] = ForceResistance(name, (a, b, c), (d, e, f))
+            frp[name] = new_force_resistance(name, (a, b, c), (d, e, f))
         elif kind == "hear":
             direction = m[3]
-            hears.append(Hear(m[1], float(m[2]), None if direction == "self" else float(direction), m[4]))
+            hears.append(new_hear(m[1], float(m[2]), None if direction == "self" else float(direction), m[4]))
         elif kind == "time":
             if time is not None:
                 return None
-            time = TimePerceptor(float(m[1]))
+            time = new_time(float(m[1]))
         elif kind == "GS":
             if game_state is not None:
                 return None
             unum = m[1]
-            game_state = GameState(
+            game_state = new_game_state(
                 None if unum is None else int(unum), m[2], int(m[3]), int(m[4]), float(m[5]), m[6]
             )
         elif kind == "GYR":
             if gyro is not None:
                 return None
-            gyro = Gyro(m[1], (float(m[2]), float(m[3]), float(m[4])))
+            gyro = new_gyro(m[1], (float(m[2]), float(m[3]), float(m[4])))
         else:
             if acc is not None:
                 return None
-            acc = Accelerometer(m[1], (float(m[2]), float(m[3]), float(m[4])))
+            acc = new_accelerometer(m[1], (float(m[2]), float(m[3]), float(m[4])))
         order.append(kind)
         pos = m.end()
     if len(joints) != joint_count:
         return None  # a joint given twice
-    return Sense(time, game_state, gyro, acc, joints, frp, tuple(hears), see, None, 0, tuple(order))
+    return new_sense(time, game_state, gyro, acc, joints, frp, tuple(hears), see, None, 0, tuple(order))
 
 
 def _fast_see(text: str, raw: bytes, pos: int) -> tuple[See, int] | None:
@@ -232,7 +237,7 @@ def _fast_see(text: str, raw: bytes, pos: int) -> tuple[See, int] | None:
             parts = dict(zip(part_tokens, map(_new_polar, zip(floats, floats, floats))))
             if len(parts) != parts_text.count("(pol "):
                 return None  # a part named twice
-            players.append(VisiblePlayer(team, None if unum is None else int(unum), parts))
+            players.append(new_visible_player(team, None if unum is None else int(unum), parts))
             runs.append(SEE_PLAYER)
         elif kind == "my":
             m = _MYPOS.match(text, i)
@@ -255,7 +260,7 @@ def _fast_see(text: str, raw: bytes, pos: int) -> tuple[See, int] | None:
         i = stop
     if i == start or not text.startswith(")", i):
         return None
-    return See(tuple(objects), tuple(players), tuple(lines), my_pos, "".join(runs)), i + 1
+    return new_see(tuple(objects), tuple(players), tuple(lines), my_pos, "".join(runs)), i + 1
 
 
 #: Shapes of the messages parsed so far (see agent.protocol.sense_shape).

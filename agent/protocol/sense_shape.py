@@ -20,8 +20,8 @@ from collections.abc import Callable
 from operator import itemgetter
 from typing import Any
 
-from agent.protocol.perceptors import (Accelerometer, ForceResistance, GameState, Gyro, Hear, See, Sense,
-                                       TimePerceptor)
+from agent.protocol.perceptors import (See, Sense, new_accelerometer, new_force_resistance, new_game_state, new_gyro,
+                                       new_hear, new_sense, new_time)
 
 #: Shapes kept at most (a server sends each robot a handful: vision or not, which feet touch, hears; the 22
 #: agents of a match in one process share the cache, ~40-130 shapes of all their robot types); past it all go.
@@ -142,26 +142,27 @@ class _Shape:
         game_state = None
         if i >= 0:
             unum = g[i]
-            game_state = GameState(None if unum is None else int(unum), g[i + 1], int(g[i + 2]), int(g[i + 3]),
-                                   float(g[i + 4]), g[i + 5])
+            game_state = new_game_state(None if unum is None else int(unum), g[i + 1], int(g[i + 2]),
+                                        int(g[i + 3]), float(g[i + 4]), g[i + 5])
         gyro = acc = None
         if self.gyro is not None:
             name, i = self.gyro
-            gyro = Gyro(name, (float(g[i]), float(g[i + 1]), float(g[i + 2])))
+            gyro = new_gyro(name, (float(g[i]), float(g[i + 1]), float(g[i + 2])))
         if self.acc is not None:
             name, i = self.acc
-            acc = Accelerometer(name, (float(g[i]), float(g[i + 1]), float(g[i + 2])))
+            acc = new_accelerometer(name, (float(g[i]), float(g[i + 1]), float(g[i + 2])))
         frp = {}
         for name, i in self.frp:
-            frp[name] = ForceResistance(name, (float(g[i]), float(g[i + 1]), float(g[i + 2])),
-                                        (float(g[i + 3]), float(g[i + 4]), float(g[i + 5])))
+            frp[name] = new_force_resistance(name, (float(g[i]), float(g[i + 1]), float(g[i + 2])),
+                                             (float(g[i + 3]), float(g[i + 4]), float(g[i + 5])))
         hears = []
         for i in self.hears:
             direction = g[i + 2]
-            hears.append(Hear(g[i], float(g[i + 1]), None if direction == "self" else float(direction), g[i + 3]))
-        return Sense(None if self.time < 0 else TimePerceptor(float(g[self.time])), game_state, gyro, acc,
-                     dict(zip(self.joint_names, map(float, self.joint_values(g)))), frp, tuple(hears), see, None, 0,
-                     self.order)
+            hears.append(new_hear(g[i], float(g[i + 1]), None if direction == "self" else float(direction),
+                                  g[i + 3]))
+        return new_sense(None if self.time < 0 else new_time(float(g[self.time])), game_state, gyro, acc,
+                         dict(zip(self.joint_names, map(float, self.joint_values(g)))), frp, tuple(hears), see, None,
+                         0, self.order)
 
 
 class ShapeCache:

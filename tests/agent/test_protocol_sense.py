@@ -326,3 +326,20 @@ def test_the_world_model_drops_non_finite_sightings() -> None:
     assert frame is not None
     assert len(frame.lines) == len(parse_sense(data).see.lines) - 1
     assert all(all(map(math.isfinite, (*a, *b))) for a, b in frame.lines)
+
+
+@pytest.mark.parametrize("cls", [Sense, TimePerceptor, GameState, Gyro, Accelerometer, ForceResistance, Hear, See,
+                                 VisiblePlayer])
+def test_record_builders_make_what_the_constructors_make(cls: type) -> None:
+    """The parsers' fast builders (perceptors.record_builder) give equal objects with the same repr and every
+    field set, for the classes the parsers build."""
+    from agent.protocol.perceptors import record_builder
+
+    values = [f"value {i}" for i, _ in enumerate(dataclasses.fields(cls))]
+    built, constructed = record_builder(cls)(*values), cls(*values)
+    assert type(built) is cls
+    assert built == constructed
+    assert repr(built) == repr(constructed)
+    assert [getattr(built, item.name) for item in dataclasses.fields(cls)] == values
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        setattr(built, dataclasses.fields(cls)[0].name, 0)
