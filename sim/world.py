@@ -131,11 +131,11 @@ class World:
         self.motors = MotorBank(self.params)
         self.time_s = 0.0
         self.mujoco_wall_s = 0.0
+        """Wall time spent inside mujoco.mj_step [s] (for benchmarks)."""
         self.divergences = 0
         """Cycles MuJoCo's physics diverged in and were restarted (see `_recover_from_divergence`)."""
         self._poses_stale = False
         self._templates: dict[int, mujoco.MjSpec] = {}
-        """Wall time spent inside mujoco.mj_step [s] (for benchmarks)."""
         self._ball_touchers: list[tuple[str, int]] = []
         self._touching_pairs: list[tuple[tuple[str, int], tuple[str, int]]] = []
         self.layout_version = 0
