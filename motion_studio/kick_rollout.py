@@ -131,7 +131,7 @@ def run_kick(library: MotionLibrary, motion: str, placement: Placement = Placeme
     aim_deg = start.heading_deg - placement.heading_deg
     spot = ball_spot(start, forward + placement.forward_m, left + placement.left_m, aim_deg)
     scenario.place_ball(spot)
-    scenario.set_skill(PlayMotion(motion) if distance_m is None else PlayMotion(motion, distance_m=distance_m))
+    scenario.set_skill(PlayMotion(motion, distance_m=distance_m))
     world, robot = scenario.world, scenario.world.by_key[scenario.key]
     feet = list(robot.foot_bodies.values())
     previous_feet = np.array([world.body_position(b) for b in feet])

@@ -114,7 +114,6 @@ def write_table(table: KickDistance, path: Path = DEFAULT_PARAMS_PATH) -> None:
         TuningError: the rewritten file does not load back to the table (the file is left unchanged).
     """
     values = {f.name: getattr(table, f.name) for f in fields(table)}
-    values = {key: list(value) if isinstance(value, tuple) else value for key, value in values.items()}
     write_dynamic_section("kick_distance", table, section_text("kick_distance", values), path)
 
 
@@ -218,7 +217,8 @@ def _main(argv: list[str]) -> int:
         raise ValueError(f"--stretches: every stretch must be >= 1, got {stretches}")
     rows_path = args.rows or args.out / "rows.json"
     rows = _read_rows(rows_path)
-    if not args.ours_only and missing(rows, stretches, offsets, "real"):
+    real = not args.ours_only and missing(rows, stretches, offsets, "real") > 0
+    if real:
         from motion_studio.realserver.rollout_kick import ensure_private_network
 
         ensure_private_network("motion_studio.realserver.kick_distance", argv)
@@ -230,17 +230,17 @@ def _main(argv: list[str]) -> int:
     library = default_library(0)
     servers: dict[str, Rollout] = {"ours": _ours}
     report = lambda text: print(text, flush=True)  # noqa: E731
-    if args.ours_only or not missing(rows, stretches, offsets, "real"):
+    if not real:
         measure(stretches, offsets, servers, library, rows, save, report)
     else:
         from motion_studio.realserver.rollout_kick import RealKickBench
 
         with RealKickBench(args.out / "real") as bench:
-            def real(lib: MotionLibrary, motion: str, placement: Placement, dynamic: DynamicParams) -> KickRun:
+            def real_kick(lib: MotionLibrary, motion: str, placement: Placement, dynamic: DynamicParams) -> KickRun:
                 bench.dynamic = dynamic
                 return bench.run(lib, motion, placement, distance_m=1.0).run
 
-            measure(stretches, offsets, {"real": real, **servers}, library, rows, save, report)
+            measure(stretches, offsets, {"real": real_kick, **servers}, library, rows, save, report)
     chosen = [r for r in rows if r["stretch"] in stretches and r["offset_m"] in offsets]
     figures = summary(chosen)
     for server, per_stretch in figures.items():

@@ -415,7 +415,7 @@ class RealKickBench:
         # the kick (frames from a full state on, so that the diffs can be followed)
         since = len(session.monitor.frames)
         session.command("(reqfullstate)")
-        behavior.set_skill(PlayMotion(motion) if distance_m is None else PlayMotion(motion, distance_m=distance_m))
+        behavior.set_skill(PlayMotion(motion, distance_m=distance_m))
         if record:
             self._record = []
         kick_start_s = None
