@@ -9,7 +9,7 @@ from kinematics.fk import torso_rotation
 from motions import load
 from motions.authoring.common import FILES_DIR
 from motions.authoring.standup import SagittalSolver, load_standup_params
-from motions.authoring.standup_types import TYPES, build_for_type, write_all
+from motions.authoring.standup_types import TYPES, build_for_type, type_params_path, write_all
 
 
 @pytest.mark.parametrize("robot_type", TYPES)
@@ -25,7 +25,7 @@ def test_shipped_type_standups_match_the_generator(tmp_path, robot_type):
 
 
 def test_type_4_crouch_has_its_com_over_its_own_soles_where_type_0_angles_would_not():
-    params = load_standup_params()["standup_back"]
+    params = load_standup_params(type_params_path(4))["standup_back"]
     motion = build_for_type(4)["standup_back"]
     crouch = {w: t.angle_rad for w, t in motion.phase("crouch").targets.items()}
     type4, type0 = SagittalSolver(4).kinematics, SagittalSolver(0).kinematics
@@ -37,7 +37,8 @@ def test_type_4_crouch_has_its_com_over_its_own_soles_where_type_0_angles_would_
         return float(com[1] - sole[1])
 
     assert com_ahead_of_sole(type4, crouch) == pytest.approx(params.crouch_com_forward_m, abs=2e-4)
-    type0_crouch = {w: t.angle_rad for w, t in load(FILES_DIR / "standup_back.xml").phase("crouch").targets.items()}
+    type0_back = build_for_type(0, type_params_path(4))["standup_back"]   # the same parameters solved for type 0
+    type0_crouch = {w: t.angle_rad for w, t in type0_back.phase("crouch").targets.items()}
     # Type 0's angles on type 4: the CoM lies ~1.8 cm further ahead of its (shorter, rearward) foot box.
     assert com_ahead_of_sole(type4, type0_crouch) - params.crouch_com_forward_m > 0.01
 
