@@ -114,6 +114,11 @@ sessions), benchmarks/bench_sim.py.
   ball beside the foot 1.48 / 1.68 / 1.47 m, the shipped kick 4.09 / 4.01 / 3.88 m, the ball's roll 0.677 /
   0.685 / 0.677 m per m/s, the resting ball's height 0.0403 / 0.0416 / 0.0401 m; the untuned kick of the
   ``kick_dryrun_simcmds`` fixture, which jams the real ball, got worse (0.84 / 1.70 / 1.78 m).
+  Still different (measured 2026-11-27): the dribble push agrees in its end only. Replayed, the real ball's first
+  touch moves it 1.0 m and a second touch 1.7 m more; ours leaves with one touch that carries it 2.4 m. Closed loop
+  (``motion-studio real skills dribble``, type 0, 10 m) the real dribble takes 28-46 s in 5 runs, ours 16-17.5 s:
+  the real ball stays near the feet (within 0.5 m of the torso 44-58 % of the time, ours 21-33 %) and drifts out
+  of the walking line, so the real robot lines up again more often; ours rolls ahead and is walked after.
 * **Body-part friction, fitted on the real lying-on-back stand-up (2026-11-26, issue 12).** SimSpark's robot
   contacts slip in proportion to their tangential force (force-dependent slip 5e-3 m/s per N, μ = ∞), so a body part
   pushed hard along the ground slides while the feet of a walk, whose tangential forces stay small, hold. Lying on
