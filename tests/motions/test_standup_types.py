@@ -8,7 +8,7 @@ import pytest
 from kinematics.fk import torso_rotation
 from motions import load
 from motions.authoring.common import FILES_DIR
-from motions.authoring.standup import SagittalSolver, load_standup_params
+from motions.authoring.standup import STANDUPS, SagittalSolver, load_standup_params
 from motions.authoring.standup_types import TYPES, build_for_type, type_params_path, write_all
 
 
@@ -45,7 +45,19 @@ def test_type_4_crouch_has_its_com_over_its_own_soles_where_type_0_angles_would_
 
 def test_type_standups_end_in_the_shared_stand_pose():
     stand = load(FILES_DIR / "stand.xml").keyframes[-1]
-    for motion in build_for_type(4).values():
-        last = motion.keyframes[-1]
+    motions = build_for_type(4)
+    for name in STANDUPS:
+        last = motions[name].keyframes[-1]
         for wire, target in last.targets.items():
             assert target.angle_rad == pytest.approx(stand.targets[wire].angle_rad, abs=math.radians(0.02)), wire
+
+
+def test_type_4_keeps_its_own_slower_roll_to_back():
+    """Type 4's parameter file has a [roll_to_back] of its own (300 ms phases: it did not stand after the shared
+    150 ms roll on our simulator), so its folder gets its own roll; the types without one play the shared roll."""
+    shared = load(FILES_DIR / "roll_to_back.xml")
+    own = build_for_type(4)["roll_to_back"]
+    assert [k.duration_s for k in own.keyframes] == pytest.approx([0.3, 0.3, 0.3])
+    assert [k.duration_s for k in shared.keyframes] == pytest.approx([0.15, 0.15, 0.15])
+    assert [k.name for k in own.keyframes] == [k.name for k in shared.keyframes]
+    assert "roll_to_back" not in build_for_type(1)
