@@ -22,7 +22,8 @@ Playback (REFERENCE §6, thesis controller):
   running, so the angle it starts from is the measured one moved by the previous command for one cycle;
   the controller predicts that angle (``delay_compensation``).
 * Blending: a motion's first keyframe lasts at least as long as its largest joint move takes at
-  ``blend_speed_rad_s``, so a motion started from a far pose gets there without a jolt.
+  ``blend_speed_rad_s``, so a motion started from a far pose gets there without a jolt; a motion with a
+  ``blend_speed_rad_s`` constant uses its own bound (the stand-ups, which start lying still).
 * Turn gain (REFERENCE §7.3): a gain g scales a motion's targets as base + g·(target − base), where base
   is the library's gain base motion (same keyframe count) or the motion's first keyframe.
 * Slowdown (REFERENCE §7.2): after a stop request, the phases of a walk (a motion with a ``speed_m_s``
@@ -49,6 +50,8 @@ from agent.protocol.constants import CYCLE_S
 
 #: Head joints (driven by ``MotionRequest.head_deg`` when set, as the seed agent drives the head apart).
 HEAD_JOINTS = ("hj1", "hj2")
+#: Motion constant that replaces ``ControllerConfig.blend_speed_rad_s`` for that motion (the stand-ups set it).
+BLEND_CONSTANT = "blend_speed_rad_s"
 #: Guard against a loop of skipped phases (every phase of a cycle skipped).
 _MAX_SKIPS = 64
 
@@ -408,7 +411,8 @@ class MotionController:
             playback.first = False
             largest = max((abs(a - current[w]) for w, a in keyframe.targets.items() if a is not None and w in current),
                           default=0.0)
-            blend_cycles = math.ceil(largest / self.config.blend_speed_rad_s / CYCLE_S - 1e-9)
+            speed = float(playback.motion.constants.get(BLEND_CONSTANT, self.config.blend_speed_rad_s))
+            blend_cycles = math.ceil(largest / speed / CYCLE_S - 1e-9)
             if blend_cycles > cycles:
                 playback.time_s += (blend_cycles - cycles) * CYCLE_S
                 cycles = blend_cycles

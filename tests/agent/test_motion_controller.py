@@ -246,6 +246,18 @@ def test_blending_stretches_a_far_first_keyframe():
     assert cycles == math.ceil(math.radians(60.0) / 1.0 / DT)
 
 
+def test_a_motion_s_blend_speed_constant_replaces_the_controller_s_bound():
+    # The stand-ups carry blend_speed_rad_s = 6 (a robot lying still can move its limbs at full speed); every
+    # other motion keeps the controller's bound.
+    fast = xml_motion("up", [phase("a", 20, {"llj3": 60.0})], constants={"blend_speed_rad_s": 4.0})
+    slow = xml_motion("m", [phase("a", 20, {"llj3": 60.0})])
+    for motion, speed in ((fast, 4.0), (slow, 1.0)):
+        controller = MotionController(MotionLibrary({motion.name: motion}),
+                                      config=ControllerConfig(blend_speed_rad_s=1.0))
+        names = play(controller, motion.name, 1) + play(controller, None, 99)
+        assert names.count("a") == math.ceil(math.radians(60.0) / speed / DT), motion.name
+
+
 def test_unknown_motion_names_the_known_ones():
     controller = controller_for(xml_motion("walk", [phase("a", 20, {})]))
     with pytest.raises(KeyError, match="walk"):
