@@ -562,7 +562,6 @@ if __name__ == "__main__":
     main()
 
 
-__all__ = ["GroundPose", "KeyPose", "ROLLS", "SagittalSolver", "StandUpParams", "STANDUPS", "blend_constants", "build_all", "build_roll",
-           "build_standup",
-           "dumps_section", "key_poses", "load_standup_params", "parse_standup_params", "stance_params",
-           "symmetric_angles_rad", "write_all"]
+__all__ = ["GroundPose", "KeyPose", "ROLLS", "SagittalSolver", "StandUpParams", "STANDUPS", "blend_constants",
+           "build_all", "build_roll", "build_standup", "dumps_section", "key_poses", "load_standup_params",
+           "parse_standup_params", "stance_params", "symmetric_angles_rad", "write_all"]
