@@ -44,8 +44,9 @@ from pathlib import Path
 
 from motions.authoring.common import FILES_DIR, PARAMS_DIR, write_xml_motions
 from motions.authoring.gait_params import GAIT_PARAMS_PATH
-from motions.authoring.standup import (PARAMS_PATH, ROLLS, STANDUPS, SagittalSolver, build_roll, build_standup, describe,
-                                       key_poses, load_standup_params, read_meta, section_params, stance_params)
+from motions.authoring.standup import (PARAMS_PATH, ROLLS, STANDUPS, SagittalSolver, build_roll, build_standup,
+                                       describe, key_poses, load_standup_params, read_meta, section_params,
+                                       stance_params)
 from motions.model import Motion
 
 #: Types that get their own stand-ups (see the module docstring for the others).
