@@ -13,6 +13,7 @@ from pathlib import Path
 import numpy as np
 
 from motion_studio.editor.physics_preview import PreviewResult, run_physics_preview
+from motion_studio.figures import write_png
 from motions import Motion
 
 logger = logging.getLogger(__name__)
@@ -63,11 +64,7 @@ def write_plot(result: PreviewResult, title: str, path: Path) -> Path:
     else:
         verdict = f"from lying on the {result.start}: " + ("down after the motion" if result.fell else "stood up")
     figure.suptitle(f"{title}: {verdict}")
-    figure.tight_layout()
-    path.parent.mkdir(parents=True, exist_ok=True)
-    figure.savefig(path, dpi=100)
-    plt.close(figure)
-    return path
+    return write_png(figure, path)
 
 
 def write_animation(result: PreviewResult, robot_type: int, path: Path) -> Path:

@@ -7,6 +7,7 @@ import subprocess
 from pathlib import Path
 
 from motion_studio.calibration.fit import Evaluation
+from motion_studio.figures import write_png
 
 
 def agreement_table(before: Evaluation, after: Evaluation | None = None) -> str:
@@ -49,11 +50,7 @@ def plot_agreement(before: Evaluation, after: Evaluation | None, path: Path) -> 
     ax.invert_yaxis()
     ax.set_xlabel("disagreement with the real rcssserver3d (0 = same; 1 = noticeable for a skill)")
     ax.legend()
-    fig.tight_layout()
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=100)
-    plt.close(fig)
-    return path
+    return write_png(fig, path)
 
 
 def _revision() -> str:

@@ -23,6 +23,7 @@ from pathlib import Path
 
 from agent.motion import MotionLibrary, default_library, load_dynamic_params
 from agent.motion.dynamic import DEFAULT_PARAMS_PATH, DynamicParams, KickDistance
+from motion_studio.figures import write_png
 from motion_studio.kick_rollout import KickRun, Placement, run_kick
 from motion_studio.tuning.dynamic_file import write_dynamic_section
 from motion_studio.tuning.params_file import Provenance, section_text
@@ -151,11 +152,7 @@ def plot(rows: Sequence[dict], path: Path) -> Path:
     ax.set_title("distance-controlled kick: kick and kick_left, ball offsets along the line")
     ax.grid(alpha=0.3)
     ax.legend()
-    fig.tight_layout()
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path
+    return write_png(fig, path, dpi=110)
 
 
 def _ours(library: MotionLibrary, motion: str, placement: Placement, dynamic: DynamicParams) -> KickRun:
