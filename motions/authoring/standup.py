@@ -367,6 +367,11 @@ def read_meta(path: Path, section: str) -> dict[str, str]:
     return {k: str(v) for k, v in data.get(section, {}).items() if k in META_KEYS}
 
 
+def meta_comments(path: Path, section: str) -> tuple[str, ...]:
+    """A section's meta keys as XML comment lines (``--`` may not appear inside an XML comment)."""
+    return tuple(f" {key}: {value} ".replace("--", "- -") for key, value in read_meta(path, section).items())
+
+
 def stance_params(gait_path: Path = GAIT_PARAMS_PATH) -> GaitParams:
     """The walk stance: ``[stand]`` of the gait parameter file.
 
@@ -520,7 +525,6 @@ def build_all(path: Path = PARAMS_PATH, gait_path: Path = GAIT_PARAMS_PATH) -> d
     out = {}
     for name, side in STANDUPS.items():
         params = section_params(sections, path, name)
-        meta = read_meta(path, name)
         flat = replace(params, ground=())
         comments = header("motions.authoring.standup", path, name, flat, command)
         comments = tuple(c.replace("IK with kinematics.ik.WholeBodyIK", "sagittal IK on kinematics.fk.NaoKinematics, stance by kinematics.ik.WholeBodyIK")
@@ -528,8 +532,7 @@ def build_all(path: Path = PARAMS_PATH, gait_path: Path = GAIT_PARAMS_PATH) -> d
         poses = key_poses(params, side, stance, solver)
         comments += (f" Lying on the {side}. Keyframes (ground phases in joint space, left side, right mirrored): ",)
         comments += describe(poses)
-        if meta:
-            comments += tuple(f" {key}: {value} ".replace("--", "- -") for key, value in meta.items())
+        comments += meta_comments(path, name)
         out[name] = build_standup(name, params, side, stance, comments, solver, poses)
     for name in ROLLS:
         params = section_params(sections, path, name)
@@ -538,7 +541,7 @@ def build_all(path: Path = PARAMS_PATH, gait_path: Path = GAIT_PARAMS_PATH) -> d
                          header("motions.authoring.standup", path, name, replace(params, ground=()), command))
         comments += (" Ground phases only (left side, right mirrored): " + "; ".join(
             f"{g.name} {g.duration_ms} ms" for g in params.ground) + " ",)
-        comments += tuple(f" {key}: {value} ".replace("--", "- -") for key, value in read_meta(path, name).items())
+        comments += meta_comments(path, name)
         out[name] = build_roll(name, params, comments)
     return out
 
@@ -564,4 +567,4 @@ if __name__ == "__main__":
 
 __all__ = ["GroundPose", "KeyPose", "ROLLS", "SagittalSolver", "StandUpParams", "STANDUPS", "blend_constants",
            "build_all", "build_roll", "build_standup", "dumps_section", "key_poses", "load_standup_params",
-           "parse_standup_params", "stance_params", "symmetric_angles_rad", "write_all"]
+           "meta_comments", "parse_standup_params", "stance_params", "symmetric_angles_rad", "write_all"]
