@@ -83,6 +83,10 @@ REAL_PLACEMENTS = (Placement(-0.02, 0.0, 0.0), Placement(-0.015, 0.01, 2.0), Pla
 #: window leaves it up to 9 cm beyond, agent.skills.kick_lineup): candidates tuned on +-2 cm alone for
 #: kick_strong (issue 14) went 4.4 m there and 0.1 m at 3 or 4.5 cm beyond, where the shipped kick went 4.1 m.
 REAL_WIDE_PLACEMENTS = REAL_PLACEMENTS + (Placement(0.03, 0.0, 0.0), Placement(0.045, 0.0, 0.0))
+#: ``--real-placements quick``: the spot and 1 cm either side, for a first search of a new region of the space
+#: (a third of the time per candidate); a kick found there still needs a narrow or wide pass.
+REAL_QUICK_PLACEMENTS = (Placement(-0.01, 0.0, 0.0), Placement(0.0, 0.0, 0.0), Placement(0.01, 0.0, 0.0))
+REAL_PLACEMENT_SETS = {"narrow": REAL_PLACEMENTS, "wide": REAL_WIDE_PLACEMENTS, "quick": REAL_QUICK_PLACEMENTS}
 #: With ``--backend both``: the placements on our simulator, as the kick scenario tests leave the ball (the
 #: spot, 2 cm and 0.5 cm short, 2 cm beyond and 1 cm across as KickToward's test, 4.5 cm beyond in its loose
 #: window).
@@ -112,19 +116,25 @@ SPACE = (
     Parameter("shift_ms", 300, 700, 20), Parameter("com_inset_m", -0.01, 0.025), Parameter("com_forward_m", -0.02, 0.05),
     Parameter("torso_pitch_deg", -4.0, 8.0), Parameter("torso_height_m", 0.32, 0.36),
     Parameter("shift_torso_roll_deg", -10.0, 6.0), Parameter("lift_height_m", 0.02, 0.06),
-    Parameter("kick_foot_x_m", 0.05, 0.11), Parameter("windup_ms", 100, 300, 20),
+    Parameter("kick_foot_x_m", 0.05, 0.11), Parameter("windup_ms", 100, 500, 20),
     Parameter("windup_back_m", -0.12, -0.03), Parameter("windup_height_m", 0.03, 0.10),
     Parameter("windup_pitch_deg", -45.0, 0.0), Parameter("windup_yaw_deg", -12.0, 0.0),
     Parameter("windup_torso_pitch_deg", -5.0, 12.0), Parameter("windup_torso_yaw_deg", -20.0, 0.0),
     Parameter("strike_torso_yaw_deg", -10.0, 0.0), Parameter("strike_torso_pitch_deg", -5.0, 20.0),
-    Parameter("swing_ms", 0, 60, 20), Parameter("swing_forward_m", -0.05, 0.04), Parameter("swing_height_m", 0.02, 0.06),
-    Parameter("swing_pitch_deg", -30.0, 30.0), Parameter("strike_ms", 20, 160, 20),
+    Parameter("swing_ms", 0, 100, 20), Parameter("swing_forward_m", -0.05, 0.04), Parameter("swing_height_m", 0.02, 0.06),
+    Parameter("swing_pitch_deg", -30.0, 30.0), Parameter("strike_ms", 20, 300, 20),
     Parameter("strike_forward_m", 0.06, 0.18), Parameter("strike_height_m", 0.02, 0.08),
     Parameter("strike_pitch_deg", -35.0, 30.0), Parameter("strike_yaw_deg", -20.0, 10.0),
     Parameter("strike_ankle_offset_deg", 0.0, 120.0), Parameter("strike_hip_offset_deg", -50.0, 0.0),
-    Parameter("follow_ms", 20, 200, 20), Parameter("retract_ms", 200, 500, 20), Parameter("land_ms", 200, 500, 20),
+    Parameter("follow_ms", 20, 300, 20), Parameter("retract_ms", 200, 500, 20), Parameter("land_ms", 200, 500, 20),
     Parameter("recover_ms", 300, 900, 20), Parameter("arm_swing_deg", 0.0, 40.0),
     Parameter("ball_ahead_m", 0.11, 0.23), Parameter("ball_side_m", 0.03, 0.13),
+    Parameter("windup_hip_pitch_offset_deg", -40.0, 10.0), Parameter("windup_knee_offset_deg", -70.0, 20.0),
+    Parameter("windup_ankle_offset_deg", -40.0, 40.0), Parameter("strike_hip_pitch_offset_deg", -20.0, 70.0),
+    Parameter("strike_knee_offset_deg", -30.0, 80.0), Parameter("support_hip_pitch_offset_deg", -60.0, 40.0),
+    Parameter("support_knee_offset_deg", -30.0, 40.0), Parameter("support_ankle_offset_deg", -30.0, 20.0),
+    Parameter("windup_support_yaw_offset_deg", -45.0, 10.0), Parameter("swing_hip_pitch_offset_deg", -20.0, 60.0),
+    Parameter("swing_knee_offset_deg", -60.0, 40.0), Parameter("swing_support_hip_pitch_offset_deg", -40.0, 20.0),
 )
 
 
@@ -320,9 +330,9 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--ours-placements", choices=("check", "all"), default="check",
                         help="our simulator's placements with --backend both: OURS_CHECK_PLACEMENTS (5) or all "
                              "of PLACEMENTS (13, for robustness)")
-    parser.add_argument("--real-placements", choices=("narrow", "wide"), default="narrow",
-                        help="the real server's placements: REAL_PLACEMENTS (9, +-2 cm) or REAL_WIDE_PLACEMENTS (11: "
-                             "also 3 and 4.5 cm beyond the spot)")
+    parser.add_argument("--real-placements", choices=tuple(REAL_PLACEMENT_SETS), default="narrow",
+                        help="the real server's placements: REAL_PLACEMENTS (9, +-2 cm), REAL_WIDE_PLACEMENTS (11: "
+                             "also 3 and 4.5 cm beyond the spot) or REAL_QUICK_PLACEMENTS (3: the spot, +-1 cm)")
     parser.add_argument("--ours-cap-m", type=float, default=4.0,
                         help="distance credited at most on our simulator (both) [m]: its ball rolls farther")
     parser.add_argument("--real-workdir", type=Path, default=Path("out/tune_kick_real"),
@@ -348,7 +358,7 @@ def main(argv: list[str] | None = None) -> int:
 
         ensure_private_network("motion_studio.tune_kick", list(argv) if argv is not None else sys.argv[1:])
         with RealKickBench(args.real_workdir) as bench:
-            real_placements = REAL_WIDE_PLACEMENTS if args.real_placements == "wide" else REAL_PLACEMENTS
+            real_placements = REAL_PLACEMENT_SETS[args.real_placements]
             backends = [Backend("real", bench.rollout, real_placements)]
             if args.backend == "both":
                 ours = PLACEMENTS if args.ours_placements == "all" else OURS_CHECK_PLACEMENTS
@@ -372,7 +382,7 @@ def main(argv: list[str] | None = None) -> int:
                    f"{' --start-checkpoint ' + str(args.start_checkpoint) if args.start_checkpoint else ''}"
                    f"{' --only ' + args.only if args.only else ''}"
                    f"{' --backend ' + args.backend if real else ''}"
-                   f"{' --real-placements wide' if real and args.real_placements == 'wide' else ''}")
+                   f"{' --real-placements ' + args.real_placements if real and args.real_placements != 'narrow' else ''}")
         provenance = Provenance.now(command).text(f"CMA-ES on {where}")
         write_section(args.section, KickParams(**best["params"]), provenance, measured)
         for path in write_all():

@@ -105,6 +105,15 @@ class KickToward(Skill):
         if distance_m is not None:  # an accurate kick waits for a placement its table was measured on
             self.config = replace(self.config, loose_forward_max_m=min(self.config.loose_forward_max_m,
                                                                        self.config.controlled_loose_forward_max_m))
+        self._fallback_config = self.config
+        """The normal kick's tolerances: a long kick whose narrow window the ball misses kicks the normal kick
+        where that one would kick now (a short kick now beats a long one after more corrections)."""
+        if self.strong:  # the long kick misses a ball 3 cm off its spot along the line
+            self.config = replace(self.config,
+                                  loose_forward_min_m=max(self.config.loose_forward_min_m,
+                                                          self.config.strong_loose_forward_min_m),
+                                  loose_forward_max_m=min(self.config.loose_forward_max_m,
+                                                          self.config.strong_loose_forward_max_m))
         reach = f" {distance_m:.1f} m" if distance_m is not None else ""
         self.name = f"kick{' strong' if self.strong else ''}{reach} toward ({target_x_m:.1f}, {target_y_m:.1f})"
         self.reset()
@@ -219,6 +228,12 @@ class KickToward(Skill):
             fine_steps = self.config.max_fine_steps  # too late for precision
         alignment, move = plan(self.config, ball, aim_rad, spots, library, self.corrections, self.approaches,
                                fine_steps, pose is not None, step_m)
+        if self.strong and move.kind != "kick":
+            normal = plan(self._fallback_config, ball, aim_rad, kick_spots(motion, False), library, self.corrections,
+                          self.approaches, fine_steps, pose is not None, step_m)
+            if normal[1].kind == "kick":
+                alignment, move = normal[0], replace(normal[1], why=f"{normal[1].why} of the normal kick, not the "
+                                                                     f"long kick's ({move.kind})")
         self.foot = alignment.spot.motion
         logger.debug("t=%.2f ball (%.3f, %.3f) spot %s error (%+.3f, %+.3f) aim %+.1f deg -> %s %s (%s)",
                      world.now_s, ball[0], ball[1], alignment.spot.motion, alignment.error_f, alignment.error_l,

@@ -65,6 +65,24 @@ TORSO_TOLERANCE_DEG = 3.0
 FOOT_TOLERANCE_M = 0.001
 #: Phases whose kicking-leg targets get the joint offsets (``strike_ankle_offset_deg``, ...) after the IK.
 STRIKE_PHASES = ("strike", "follow")
+#: Joint-space offsets added to the IK's targets: parameter -> (phases, joint's perceptor name). Each is
+#: clamped to the joint's range; all 0 leaves the IK's kick as it is.
+JOINT_OFFSETS: dict[str, tuple[tuple[str, ...], str]] = {
+    "windup_hip_pitch_offset_deg": (("windup",), "rlj3"),
+    "windup_knee_offset_deg": (("windup",), "rlj4"),
+    "windup_ankle_offset_deg": (("windup",), "rlj5"),
+    "windup_support_yaw_offset_deg": (("windup",), "llj1"),
+    "swing_hip_pitch_offset_deg": (("swing",), "rlj3"),
+    "swing_knee_offset_deg": (("swing",), "rlj4"),
+    "swing_support_hip_pitch_offset_deg": (("swing",), "llj3"),
+    "strike_ankle_offset_deg": (STRIKE_PHASES, "rlj5"),
+    "strike_hip_offset_deg": (STRIKE_PHASES, "rlj1"),
+    "strike_hip_pitch_offset_deg": (STRIKE_PHASES, "rlj3"),
+    "strike_knee_offset_deg": (STRIKE_PHASES, "rlj4"),
+    "support_hip_pitch_offset_deg": (STRIKE_PHASES, "llj3"),
+    "support_knee_offset_deg": (STRIKE_PHASES, "llj4"),
+    "support_ankle_offset_deg": (STRIKE_PHASES, "llj5"),
+}
 
 
 @dataclass(frozen=True)
@@ -149,6 +167,41 @@ class KickParams:
     strike_hip_offset_deg: float = 0.0
     """Added to the kicking hip yaw-pitch target of the strike and follow-through, after the IK [deg] (- = the
     leg swings in and forward about the joint's 45 deg axis: 0.2 m/s of toe speed per rad/s at the contact)."""
+    windup_hip_pitch_offset_deg: float = 0.0
+    """Added to the kicking hip pitch target of the windup, after the IK [deg] (- = the thigh further back):
+    joint-space offsets reach leg poses the foot-pose IK clamps away (a thigh drawn far back with the knee
+    folded gives the swing a longer arc at the joints' 6.14 rad/s cap)."""
+    windup_knee_offset_deg: float = 0.0
+    """Added to the kicking knee target of the windup [deg] (- = more bent, the heel up behind)."""
+    windup_ankle_offset_deg: float = 0.0
+    """Added to the kicking ankle pitch target of the windup [deg] (+ = toes up)."""
+    windup_support_yaw_offset_deg: float = 0.0
+    """Added to the support hip yaw-pitch target of the windup [deg] (- = the pelvis twisted further toward
+    the kicking side): the untwist during the strike turns the pelvis, and the kicking leg with it, about the
+    support hip's 45 deg axis at the joint's speed cap, adding to the kicking foot's speed."""
+    swing_hip_pitch_offset_deg: float = 0.0
+    """Added to the kicking hip pitch target of the swing (the via point) [deg] (+ = the thigh further
+    forward): with ``swing_knee_offset_deg`` the thigh can lead while the shank stays folded, and the knee
+    snaps straight in the strike (the shank then turns at the hip's and the knee's speed caps together)."""
+    swing_knee_offset_deg: float = 0.0
+    """Added to the kicking knee target of the swing [deg] (- = more bent)."""
+    swing_support_hip_pitch_offset_deg: float = 0.0
+    """Added to the support hip pitch target of the swing [deg] (- = the torso starts leaning back before the
+    strike, so the support hip's extension runs at its cap through the contact)."""
+    strike_hip_pitch_offset_deg: float = 0.0
+    """Added to the kicking hip pitch target of the strike and follow-through [deg] (+ = the thigh further
+    forward and up: the joint keeps running at its cap through the contact instead of braking into it)."""
+    strike_knee_offset_deg: float = 0.0
+    """Added to the kicking knee target of the strike and follow-through [deg] (+ = straighter)."""
+    support_hip_pitch_offset_deg: float = 0.0
+    """Added to the support hip pitch target of the strike and follow-through [deg] (+ = the torso pitches
+    forward over the support thigh)."""
+    support_knee_offset_deg: float = 0.0
+    """Added to the support knee target of the strike and follow-through [deg] (+ = straighter: the hips rise
+    and move forward into the kick)."""
+    support_ankle_offset_deg: float = 0.0
+    """Added to the support ankle pitch target of the strike and follow-through [deg] (- = the shank tips
+    forward over the foot, carrying the hips toward the ball)."""
     follow_ms: int = 100
     """Holding the strike pose while the leg decelerates [ms]."""
     retract_ms: int = 300
@@ -413,11 +466,11 @@ def build_kick(name: str, params: KickParams, stance: GaitParams, solver: Keyfra
     names = ["stance"] + [p[0] for p in poses] + ["recover"]
     phases = [_phase("stance", stand, stance.stance_ms, next=names[1], skip_if_flag=STANCE_FLAG)]
     limits = {joint.perceptor: (joint.min_rad, joint.max_rad) for joint in solver.ik.spec.joints}
-    offsets = {"rlj5": params.strike_ankle_offset_deg, "rlj1": params.strike_hip_offset_deg}
     for index, (phase_name, duration_ms, pose) in enumerate(poses, start=1):
         angles = pose_solver.solve(pose)
-        if phase_name in STRIKE_PHASES:
-            for wire, offset_deg in offsets.items():
+        for parameter, (offset_phases, wire) in JOINT_OFFSETS.items():
+            offset_deg = getattr(params, parameter)
+            if phase_name in offset_phases and offset_deg:
                 low, high = limits[wire]
                 angles[wire] = min(high, max(low, angles[wire] + math.radians(offset_deg)))
         phases.append(_phase(phase_name, angles, duration_ms, next=names[index + 1],

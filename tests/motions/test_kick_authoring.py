@@ -14,8 +14,9 @@ from kinematics.fk import NaoKinematics
 from motions.authoring.common import FootPose, KeyframeSolver
 from motions.authoring.gait import STANCE_FLAG, build_stance
 from motions.authoring import kick_steps
-from motions.authoring.kick import (FILES_DIR, STRIKE_PHASES, KickParams, Pose, PoseSolver, ball_constants, build_all,
-                                    build_kick, kick_params, kick_poses, parse_kick_params, stance_params)
+from motions.authoring.kick import (FILES_DIR, JOINT_OFFSETS, STRIKE_PHASES, KickParams, Pose, PoseSolver,
+                                    ball_constants, build_all, build_kick, kick_params, kick_poses, parse_kick_params,
+                                    stance_params)
 
 SINGLE_SUPPORT = ("lift", "windup", "swing", "strike", "follow", "retract")
 
@@ -95,9 +96,11 @@ def test_left_kick_is_the_mirror_image(kicks):
 
 
 def test_strike_moves_the_foot_forward_through_the_ball_spot(kicks, fk):
-    """The kicking sole goes from behind the support sole at the windup to ahead of it at the strike."""
-    motion = kicks["kick_strong"]
-    params = kick_params("kick_strong")
+    """The kicking sole goes from behind the support sole at the windup to ahead of it at the strike (the
+    IK's kick; kick_strong's strike targets carry joint-space offsets the leg never reaches before the contact,
+    and its physics is checked in tests/scenarios/test_kick.py)."""
+    motion = kicks["kick"]
+    params = kick_params("kick")
 
     def forward(phase: str) -> float:
         angles = _angles(motion.phase(phase))
@@ -147,6 +150,29 @@ def test_shipped_files_equal_a_fresh_generation(kicks):
             for wire, target in want.targets.items():
                 assert got.angle_rad(wire) == pytest.approx(target.angle_rad, abs=1e-9), (name, got.name, wire)
         assert shipped.constants == pytest.approx(motion.constants)
+
+
+def test_joint_offsets_move_only_their_joint_in_their_phases_within_its_range():
+    """Each joint-space offset (the long kick's windup and strike poses beyond the foot-pose IK) adds to one
+    joint's IK target in its phases only, and a large one stops at the joint's limit."""
+    stance = stance_params()
+    plain = replace(kick_params("kick"), **{parameter: 0.0 for parameter in JOINT_OFFSETS})
+    base = build_kick("kick", plain, stance)
+    limits = {joint.perceptor: (joint.min_rad, joint.max_rad) for joint in KeyframeSolver().ik.spec.joints}
+    for parameter, (phases, wire) in JOINT_OFFSETS.items():
+        shifted = build_kick("kick", replace(plain, **{parameter: 7.0}), stance)
+        for before, after in zip(base.keyframes, shifted.keyframes):
+            for joint, target in before.targets.items():
+                moved = after.angle_rad(joint) - target.angle_rad
+                if before.name in phases and joint == wire:
+                    low, high = limits[wire]
+                    want = min(high, target.angle_rad + math.radians(7.0)) - target.angle_rad
+                    assert moved == pytest.approx(want, abs=1e-9), (parameter, before.name)
+                else:
+                    assert moved == pytest.approx(0.0, abs=1e-9), (parameter, before.name, joint)
+    folded = build_kick("kick", replace(plain, windup_knee_offset_deg=-400.0), stance)
+    windup = next(k for k in folded.keyframes if k.name == "windup")
+    assert windup.angle_rad("rlj4") == pytest.approx(limits["rlj4"][0], abs=1e-6)
 
 
 def test_build_kick_reuses_a_solver():
