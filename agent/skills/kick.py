@@ -34,7 +34,7 @@ from dataclasses import replace
 
 from agent.motion import MotionController, MotionRequest
 from agent.skills.base import Skill
-from agent.skills.kick_lineup import STEP_FORWARD, KickConfig, Move, Spot, plan
+from agent.skills.kick_lineup import STEP_FORWARD, KickConfig, Move, Spot, plan, plan_with_fallback
 from agent.skills.walk import FORWARD, TURN_LEFT, TURN_RIGHT, WalkConfig, WalkTo, report_walk_odometry
 from agent.world.frames import wrap_angle_rad
 from agent.world_model import WorldModel
@@ -226,14 +226,13 @@ class KickToward(Skill):
         fine_steps = self.fine_steps
         if self._started_s is not None and world.now_s - self._started_s > self.config.fine_steps_within_s:
             fine_steps = self.config.max_fine_steps  # too late for precision
-        alignment, move = plan(self.config, ball, aim_rad, spots, library, self.corrections, self.approaches,
-                               fine_steps, pose is not None, step_m)
-        if self.strong and move.kind != "kick":
-            normal = plan(self._fallback_config, ball, aim_rad, kick_spots(motion, False), library, self.corrections,
-                          self.approaches, fine_steps, pose is not None, step_m)
-            if normal[1].kind == "kick":
-                alignment, move = normal[0], replace(normal[1], why=f"{normal[1].why} of the normal kick, not the "
-                                                                     f"long kick's ({move.kind})")
+        if self.strong:
+            alignment, move = plan_with_fallback(self.config, self._fallback_config, ball, aim_rad, spots,
+                                                 kick_spots(motion, False), library, self.corrections,
+                                                 self.approaches, fine_steps, pose is not None, step_m)
+        else:
+            alignment, move = plan(self.config, ball, aim_rad, spots, library, self.corrections, self.approaches,
+                                   fine_steps, pose is not None, step_m)
         self.foot = alignment.spot.motion
         logger.debug("t=%.2f ball (%.3f, %.3f) spot %s error (%+.3f, %+.3f) aim %+.1f deg -> %s %s (%s)",
                      world.now_s, ball[0], ball[1], alignment.spot.motion, alignment.error_f, alignment.error_l,

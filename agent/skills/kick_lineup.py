@@ -25,7 +25,7 @@ for what the walk-in cannot fix, and the loose window when such a correction wou
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from agent.skills.walk import BACKWARD, FORWARD, TURN_LEFT, TURN_RIGHT
 from agent.skills.walk import LEFT as SIDE_LEFT
@@ -426,4 +426,23 @@ def _toward(config: KickConfig, goal: tuple[float, float], can_turn: bool) -> Mo
     return Move("approach", FORWARD, strides=strides, goal_ego=goal, why="walk to the approach point")
 
 
-__all__ = ["Alignment", "KickConfig", "Move", "Spot", "align", "plan", "strides_for", "to_ego"]
+
+def plan_with_fallback(config: KickConfig, fallback_config: KickConfig, ball: tuple[float, float], aim_rad: float,
+                       spots: list[Spot], fallback_spots: list[Spot], motions: frozenset[str] | set[str],
+                       corrections: int, approaches: int, fine_steps: int, localized: bool,
+                       step_m: float = KICK_STEP_M) -> tuple[Alignment, Move]:
+    """:func:`plan` for a kick with a narrow window (the long kick), falling back to another kick (the normal
+    one, ``fallback_spots`` with ``fallback_config``) where that one would kick now and the first would first
+    correct or give up: a short kick now beats a long one after more corrections (each costs 1-3 s)."""
+    alignment, move = plan(config, ball, aim_rad, spots, motions, corrections, approaches, fine_steps, localized,
+                           step_m)
+    if move.kind == "kick":
+        return alignment, move
+    other, other_move = plan(fallback_config, ball, aim_rad, fallback_spots, motions, corrections, approaches,
+                             fine_steps, localized, step_m)
+    if other_move.kind != "kick":
+        return alignment, move
+    return other, replace(other_move, why=f"{other_move.why} of the fallback kick (the first would {move.kind})")
+
+__all__ = ["Alignment", "KickConfig", "Move", "Spot", "align", "plan", "plan_with_fallback", "strides_for",
+           "to_ego"]

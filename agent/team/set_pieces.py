@@ -109,6 +109,20 @@ def kick_window(ball_ego: tuple[float, float], spot_forward_m: float, spot_left_
     return SET_PIECE_FORWARD_MIN_M <= forward <= SET_PIECE_FORWARD_MAX_M and abs(left) <= SET_PIECE_LATERAL_M
 
 
+#: The long kick's set-piece window (``kick_strong``): along the kick line from, to and across its spot [m]
+#: (``agent.skills.kick_lineup.KickConfig.strong_loose_forward_min_m`` has its measured cliffs: on the real
+#: server 5.1-7.6 m from -2..+3 cm, 0.0-0.8 m from -3 and +4.5 cm; 5.0-5.7 m with the ball 1.5 and 3 cm across).
+LONG_KICK_FORWARD_MIN_M = -0.015
+LONG_KICK_FORWARD_MAX_M = 0.02
+LONG_KICK_LATERAL_M = 0.03
+
+
+def long_kick_window(ball_ego: tuple[float, float], spot_forward_m: float, spot_left_m: float) -> bool:
+    """The ball lies where the long kick sends it its full distance: a set piece plays it instead of the kick."""
+    forward, left = ball_ego[0] - spot_forward_m, ball_ego[1] - spot_left_m
+    return LONG_KICK_FORWARD_MIN_M <= forward <= LONG_KICK_FORWARD_MAX_M and abs(left) <= LONG_KICK_LATERAL_M
+
+
 #: A ball off to the side of the window by up to this (across the kick spot) [m] is brought in with kick steps
 #: sideways (about 2 cm each on both servers) rather than the kick line-up's walk round the ball: on our simulator
 #: a kick-off whose walk-in left the ball 6.2 cm aside walked round it for 10 s.
@@ -132,4 +146,4 @@ def set_piece_move(ball_ego: tuple[float, float], spot_forward_m: float, spot_le
 
 
 __all__ = ["SET_PIECE_MAX_STEPS", "SET_PIECE_SIDE_STEP_REACH_M", "SET_PIECE_STEP_BEYOND_M", "TAKER_WAIT_S",
-           "TakerMemory", "kick_window", "own_set_piece", "set_piece_move"]
+           "TakerMemory", "kick_window", "long_kick_window", "own_set_piece", "set_piece_move"]

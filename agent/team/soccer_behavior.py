@@ -33,7 +33,8 @@ from agent.skills.walk import STAND, WalkTo
 from agent.skills.walk_ball import WalkToBall
 from agent.team import roles
 from agent.team.attack import goal_target, seen_opponents, set_piece_target
-from agent.team.set_pieces import SET_PIECE_MAX_STEPS, TakerMemory, own_set_piece, set_piece_move
+from agent.team.set_pieces import (SET_PIECE_MAX_STEPS, TakerMemory, long_kick_window, own_set_piece,
+                                    set_piece_move)
 from agent.world_model import WorldModel
 
 #: A support or keeper target that moved less than this keeps the running WalkTo [m].
@@ -41,8 +42,10 @@ RETARGET_M = 0.5
 #: The goalkeeper re-targets when its guard spot moved this much [m] (a shot's crossing point moves it less
 #: than ``RETARGET_M`` across a goal 2.1 m wide).
 KEEPER_RETARGET_M = 0.2
-#: The kick motion a set-piece taker plays once the ball lies in its window (without it, the kick skill).
+#: The kick motion a set-piece taker plays once the ball lies in its window (without it, the kick skill), and
+#: the long kick it plays instead while the ball lies in that one's narrower window.
 KICK = "kick"
+LONG_KICK = "kick_strong"
 #: Facing error a player standing on its spot tolerates before turning to the ball [deg].
 FACE_TOLERANCE_DEG = 20.0
 #: Play modes in which nobody moves (REFERENCE §4.2).
@@ -220,6 +223,13 @@ class SoccerBehavior:
         standing = self.motion.idle or self.motion.motion_name == STAND
         if KICK in self.motion.library and standing and seen is not None and seen.forward_m is not None \
                 and seen.age_s(world.now_s) < 0.2 and not self.skills.recovering:
+            ball_ego = (seen.forward_m, seen.left_m or 0.0)
+            if LONG_KICK in self.motion.library and self._facing(world, aim, SET_PIECE_AIM_DEG):
+                long_spot = self.motion.library.get(LONG_KICK).constants
+                if long_kick_window(ball_ego, float(long_spot.get("ball_forward_m", 0.125)),
+                                    float(long_spot.get("ball_left_m", 0.0))):
+                    self._use(("set_piece_kick",), lambda: PlayMotion(LONG_KICK))
+                    return
             spot = self.motion.library.get(KICK).constants
             move = set_piece_move((seen.forward_m, seen.left_m or 0.0), float(spot.get("ball_forward_m", 0.125)),
                                   float(spot.get("ball_left_m", 0.0)),

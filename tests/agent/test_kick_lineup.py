@@ -7,7 +7,7 @@ import math
 
 import pytest
 
-from agent.skills.kick_lineup import KickConfig, Spot, align, plan, strides_for
+from agent.skills.kick_lineup import KickConfig, Spot, align, plan, plan_with_fallback, strides_for
 
 CONFIG = KickConfig()
 SPOTS = [Spot("kick", 0.118, 0.021), Spot("kick_left", 0.118, -0.021)]
@@ -115,3 +115,35 @@ def test_small_heading_error_is_turned_out_only_while_there_is_time():
     ball = (0.118 + 0.005, -0.021)
     assert decide(ball, aim_deg=4.0).kind == "turn"
     assert decide(ball, aim_deg=4.0, fine_steps=CONFIG.max_fine_steps).kind == "kick"
+
+
+STRONG_SPOTS = [Spot("kick_strong", 0.121, 0.02), Spot("kick_strong_left", 0.121, -0.02)]
+STRONG_CONFIG = KickConfig(loose_forward_min_m=CONFIG.strong_loose_forward_min_m,
+                           loose_forward_max_m=CONFIG.strong_loose_forward_max_m)
+
+
+def _decide_strong(ball: tuple[float, float], fine_steps: int = 0):
+    return plan_with_fallback(STRONG_CONFIG, CONFIG, ball, 0.0, STRONG_SPOTS, SPOTS, ALL, corrections=0,
+                              approaches=0, fine_steps=fine_steps, localized=True)[1]
+
+
+def test_long_kick_on_its_spot_is_played():
+    move = _decide_strong((0.121 + 0.005, 0.02))
+    assert (move.kind, move.motion) == ("kick", "kick_strong")
+
+
+def test_long_kick_missing_its_narrow_window_late_plays_the_normal_kick_at_once():
+    """3 cm beyond the long kick's spot (where it misses the ball) once the fine steps are used up: the normal
+    kick, whose loose window reaches 8 cm, kicks now; earlier a kick step is still worth it for the long one."""
+    ball = (0.121 + 0.03, 0.02)
+    early = _decide_strong(ball)
+    assert early.kind == "move" and early.motion == "kick_step_forward"
+    late = _decide_strong(ball, fine_steps=CONFIG.max_fine_steps)
+    assert (late.kind, late.motion) == ("kick", "kick")
+    assert "fallback" in late.why
+    assert plan(STRONG_CONFIG, ball, 0.0, STRONG_SPOTS, ALL, 0, 0, CONFIG.max_fine_steps, True)[1].kind != "kick"
+
+
+def test_long_kick_far_from_the_ball_walks_in_for_the_long_kick():
+    move = _decide_strong((1.0, 0.02))
+    assert move.kind == "walk_in"
