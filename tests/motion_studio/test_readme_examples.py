@@ -42,6 +42,7 @@ HOW = {
     "play motions/files/standup_back.xml --plot out/standup.png --html out/standup.html": RUN,
     "tune gait walk_forward --generations 20": PARSE,
     "tune gait walk_forward --backend both --lean --robust 8": PARSE,   # needs the real server
+    "tune kick kick_strong --backend real --real-placements quick": PARSE,   # needs the real server
     "motions list": RUN,
     "validate motions/files/kick.xml motions/files/turn_left.motion": RUN,
     "convert motions/files/turn_left.motion out/turn_left.xml": RUN,
