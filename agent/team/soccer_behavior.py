@@ -248,7 +248,7 @@ class SoccerBehavior:
             if skill is not None and skill.done:
                 self.role = "set_piece_done"
             return
-        self._use(("kick",), lambda: KickToward(aim[0], aim[1], strong=LONG_KICK in self.motion.library))
+        self._use(("kick",), lambda: KickToward(aim[0], aim[1], strong=False))
 
     def _stand_at(self, world: WorldModel, spot: tuple[float, float], ball: tuple[float, float] | None,
                   retarget_m: float = RETARGET_M) -> None:
