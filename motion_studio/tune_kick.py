@@ -121,7 +121,8 @@ SPACE = (
     Parameter("windup_pitch_deg", -45.0, 0.0), Parameter("windup_yaw_deg", -12.0, 0.0),
     Parameter("windup_torso_pitch_deg", -5.0, 12.0), Parameter("windup_torso_yaw_deg", -20.0, 0.0),
     Parameter("strike_torso_yaw_deg", -10.0, 0.0), Parameter("strike_torso_pitch_deg", -5.0, 20.0),
-    Parameter("swing_ms", 0, 100, 20), Parameter("swing_forward_m", -0.05, 0.04), Parameter("swing_height_m", 0.02, 0.06),
+    Parameter("swing_ms", 0, 100, 20), Parameter("swing_forward_m", -0.05, 0.04),
+    Parameter("swing_height_m", 0.02, 0.06),
     Parameter("swing_pitch_deg", -30.0, 30.0), Parameter("strike_ms", 20, 300, 20),
     Parameter("strike_forward_m", 0.06, 0.18), Parameter("strike_height_m", 0.02, 0.08),
     Parameter("strike_pitch_deg", -35.0, 30.0), Parameter("strike_yaw_deg", -20.0, 10.0),
@@ -375,6 +376,8 @@ def main(argv: list[str] | None = None) -> int:
         where = {"mujoco": "our simulator", "real": "the real rcssserver3d 0.7.3",
                  "both": f"the real rcssserver3d 0.7.3 and our simulator (weight {args.ours_weight}, "
                          f"cap {args.ours_cap_m} m, placements {args.ours_placements})"}[args.backend]
+        placements_flag = (f" --real-placements {args.real_placements}"
+                           if real and args.real_placements != "narrow" else "")
         command = (f"motion-studio tune kick {args.section} --generations "
                    f"{args.generations} --sigma {args.sigma} --cap-m {args.cap_m} --time-weight {args.time_weight} "
                    f"--direction-weight {args.direction_weight}"
@@ -382,7 +385,7 @@ def main(argv: list[str] | None = None) -> int:
                    f"{' --start-checkpoint ' + str(args.start_checkpoint) if args.start_checkpoint else ''}"
                    f"{' --only ' + args.only if args.only else ''}"
                    f"{' --backend ' + args.backend if real else ''}"
-                   f"{' --real-placements ' + args.real_placements if real and args.real_placements != 'narrow' else ''}")
+                   f"{placements_flag}")
         provenance = Provenance.now(command).text(f"CMA-ES on {where}")
         write_section(args.section, KickParams(**best["params"]), provenance, measured)
         for path in write_all():

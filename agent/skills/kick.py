@@ -110,6 +110,7 @@ class KickToward(Skill):
         where that one would kick now (a short kick now beats a long one after more corrections)."""
         if self.strong:  # the long kick misses a ball 3 cm off its spot along the line
             self.config = replace(self.config,
+                                  forward_min_m=max(self.config.forward_min_m, self.config.strong_loose_forward_min_m),
                                   loose_forward_min_m=max(self.config.loose_forward_min_m,
                                                           self.config.strong_loose_forward_min_m),
                                   loose_forward_max_m=min(self.config.loose_forward_max_m,

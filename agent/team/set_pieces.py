@@ -111,8 +111,9 @@ def kick_window(ball_ego: tuple[float, float], spot_forward_m: float, spot_left_
 
 #: The long kick's set-piece window (``kick_strong``): along the kick line from, to and across its spot [m]
 #: (``agent.skills.kick_lineup.KickConfig.strong_loose_forward_min_m`` has its measured cliffs: on the real
-#: server 5.1-7.6 m from -2..+3 cm, 0.0-0.8 m from -3 and +4.5 cm; 5.0-5.7 m with the ball 1.5 and 3 cm across).
-LONG_KICK_FORWARD_MIN_M = -0.01
+#: server 5.1-5.6 m from the spot to +2 cm, 6.6 m from +3, 0.0-0.8 m from -3 and +4.5 cm and misses from 1 cm
+#: short; 5.0-5.7 m with the ball 1.5 and 3 cm across).
+LONG_KICK_FORWARD_MIN_M = 0.0
 LONG_KICK_FORWARD_MAX_M = 0.02
 LONG_KICK_LATERAL_M = 0.03
 

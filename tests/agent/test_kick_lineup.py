@@ -118,7 +118,8 @@ def test_small_heading_error_is_turned_out_only_while_there_is_time():
 
 
 STRONG_SPOTS = [Spot("kick_strong", 0.121, 0.02), Spot("kick_strong_left", 0.121, -0.02)]
-STRONG_CONFIG = KickConfig(loose_forward_min_m=CONFIG.strong_loose_forward_min_m,
+STRONG_CONFIG = KickConfig(forward_min_m=CONFIG.strong_loose_forward_min_m,
+                           loose_forward_min_m=CONFIG.strong_loose_forward_min_m,
                            loose_forward_max_m=CONFIG.strong_loose_forward_max_m)
 
 
