@@ -108,7 +108,7 @@ class KickToward(Skill):
         self._fallback_config = self.config
         """The normal kick's tolerances: a long kick whose narrow window the ball misses kicks the normal kick
         where that one would kick now (a short kick now beats a long one after more corrections)."""
-        if self.strong:  # the long kick misses a ball 3 cm off its spot along the line
+        if self.strong:  # the long kick hits well only from its spot to 2 cm beyond
             self.config = replace(self.config,
                                   forward_min_m=max(self.config.forward_min_m, self.config.strong_loose_forward_min_m),
                                   loose_forward_min_m=max(self.config.loose_forward_min_m,

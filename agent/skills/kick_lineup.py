@@ -429,7 +429,6 @@ def _toward(config: KickConfig, goal: tuple[float, float], can_turn: bool) -> Mo
     return Move("approach", FORWARD, strides=strides, goal_ego=goal, why="walk to the approach point")
 
 
-
 def plan_with_fallback(config: KickConfig, fallback_config: KickConfig, ball: tuple[float, float], aim_rad: float,
                        spots: list[Spot], fallback_spots: list[Spot], motions: frozenset[str] | set[str],
                        corrections: int, approaches: int, fine_steps: int, localized: bool,
@@ -446,6 +445,7 @@ def plan_with_fallback(config: KickConfig, fallback_config: KickConfig, ball: tu
     if other_move.kind != "kick":
         return alignment, move
     return other, replace(other_move, why=f"{other_move.why} of the fallback kick (the first would {move.kind})")
+
 
 __all__ = ["Alignment", "KickConfig", "Move", "Spot", "align", "plan", "plan_with_fallback", "strides_for",
            "to_ego"]

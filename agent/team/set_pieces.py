@@ -13,6 +13,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from agent.skills.kick_lineup import KickConfig
 from agent.team.roles import GOALKEEPER_UNUM, Candidate
 from agent.world_model import WorldModel
 
@@ -109,19 +110,17 @@ def kick_window(ball_ego: tuple[float, float], spot_forward_m: float, spot_left_
     return SET_PIECE_FORWARD_MIN_M <= forward <= SET_PIECE_FORWARD_MAX_M and abs(left) <= SET_PIECE_LATERAL_M
 
 
-#: The long kick's set-piece window (``kick_strong``): along the kick line from, to and across its spot [m]
-#: (``agent.skills.kick_lineup.KickConfig.strong_loose_forward_min_m`` has its measured cliffs: on the real
-#: server 5.1-5.6 m from the spot to +2 cm, 6.6 m from +3, 0.0-0.8 m from -3 and +4.5 cm and misses from 1 cm
-#: short; 5.0-5.7 m with the ball 1.5 and 3 cm across).
-LONG_KICK_FORWARD_MIN_M = 0.0
-LONG_KICK_FORWARD_MAX_M = 0.02
+#: The long kick's set-piece window (``kick_strong``): along the kick line the kick skill's (``KickConfig.
+#: strong_loose_forward_min_m`` / ``_max_m``, whose docstrings have the measured cliffs), and across its spot
+#: this far [m] (on the real server 5.0-5.7 m with the ball 1.5 and 3 cm across, ours 4.2-4.8 m).
 LONG_KICK_LATERAL_M = 0.03
 
 
 def long_kick_window(ball_ego: tuple[float, float], spot_forward_m: float, spot_left_m: float) -> bool:
     """The ball lies where the long kick sends it its full distance: a set piece plays it instead of the kick."""
     forward, left = ball_ego[0] - spot_forward_m, ball_ego[1] - spot_left_m
-    return LONG_KICK_FORWARD_MIN_M <= forward <= LONG_KICK_FORWARD_MAX_M and abs(left) <= LONG_KICK_LATERAL_M
+    return (KickConfig.strong_loose_forward_min_m <= forward <= KickConfig.strong_loose_forward_max_m
+            and abs(left) <= LONG_KICK_LATERAL_M)
 
 
 #: A ball off to the side of the window by up to this (across the kick spot) [m] is brought in with kick steps

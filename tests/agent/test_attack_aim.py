@@ -102,3 +102,12 @@ def test_a_set_piece_taker_steps_across_to_a_ball_just_beside_its_window(beyond_
     from agent.team.set_pieces import set_piece_move
 
     assert set_piece_move((SPOT[0] + beyond_m, SPOT[1] + left_m), *SPOT, steps_taken=steps) == move
+
+
+@pytest.mark.parametrize("beyond_m, left_m, inside", [(0.0, 0.0, True), (0.015, 0.025, True), (-0.01, 0.0, False),
+                                                      (0.03, 0.0, False), (0.01, 0.04, False)])
+def test_set_pieces_play_the_long_kick_only_in_its_window(beyond_m, left_m, inside):
+    """The long kick sends the ball 5.1-5.6 m on the real server from its spot to 2 cm beyond, and misses from 1 cm
+    short or 3 cm beyond (motions/params/kick.toml [kick_strong])."""
+    from agent.team.set_pieces import long_kick_window
+    assert long_kick_window((SPOT[0] + beyond_m, SPOT[1] + left_m), *SPOT) is inside
