@@ -43,6 +43,11 @@ def reexec_in_netns(scripts: Path, argv: Sequence[str]) -> None:
     os.execvp(netns, [netns, *argv])
 
 
+def _die_with_parent() -> None:
+    """In the server's child before its exec: SIGKILL when the process that started it ends."""
+    set_parent_death_signal(signal.SIGKILL)
+
+
 class RealServer:
     """A fresh real rcssserver3d (server.sh) in this namespace; stopped with SIGINT, as it wants.
 
@@ -57,10 +62,12 @@ class RealServer:
         self.log = open(log_path, "w")
         # The kernel signals the server when this process dies (server.sh execs it, and the setting survives the
         # exec): a real match killed with SIGTERM left its server running at 87 % of a core for 40 min.
-        # RealServer is made in each process's main thread, where PR_SET_PDEATHSIG is safe.
+        # RealServer is made in each process's main thread, where PR_SET_PDEATHSIG is safe. The signal is SIGKILL:
+        # rcssserver3d 0.7.3 does not end on SIGTERM but spins at a full core (measured 2026-11-27: three such
+        # orphans of killed real matches and tuners ran for 35-55 min), and only SIGINT or SIGKILL end it.
         self.process = subprocess.Popen(["bash", str(scripts / "server.sh")], env=env, stdout=self.log,
                                         stderr=subprocess.STDOUT, start_new_session=True,
-                                        preexec_fn=set_parent_death_signal)
+                                        preexec_fn=_die_with_parent)
 
     def stop(self) -> None:
         if self.process.poll() is None:
