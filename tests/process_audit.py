@@ -11,6 +11,7 @@ import ipaddress
 import os
 import queue
 import re
+import signal
 import subprocess
 import threading
 import time
@@ -19,6 +20,16 @@ from pathlib import Path
 TAG_VARIABLE = "NAO3D_TEST_TAG"
 #: /proc/net/tcp state code of a listening socket.
 TCP_LISTEN = "0A"
+
+
+def as_foreground_child() -> None:
+    """``preexec_fn`` of a command a test stops with SIGINT (Ctrl-C): SIGINT at its default, as in a terminal's
+    foreground job (pytest started in the background by a script inherits SIGINT ignored, and so would the
+    command: it then never sees the test's Ctrl-C), and ended by the kernel if pytest dies."""
+    from kinematics.child_process import set_parent_death_signal
+
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+    set_parent_death_signal()
 
 
 def tagged_processes(tag: str, exclude: set[int] = frozenset()) -> dict[int, str]:

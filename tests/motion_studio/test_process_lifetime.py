@@ -17,9 +17,8 @@ import uuid
 
 import pytest
 
-from kinematics.child_process import set_parent_death_signal
-from tests.process_audit import (TAG_VARIABLE, is_loopback, listening_addresses, tagged_processes, wait_for_line,
-                                 wait_until_gone)
+from tests.process_audit import (TAG_VARIABLE, as_foreground_child, is_loopback, listening_addresses,
+                                 tagged_processes, wait_for_line, wait_until_gone)
 
 CLI = [sys.executable, "-m", "motion_studio"]
 #: Seconds a child may take to notice its parent is gone (its watchdog looks four times a second).
@@ -30,7 +29,7 @@ def start(args: list[str], tag: str) -> subprocess.Popen:
     env = dict(os.environ, **{TAG_VARIABLE: tag})
     # its own session, so a SIGINT to its group is what a terminal's Ctrl-C would be, and reaches no test
     return subprocess.Popen(CLI + args, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env,
-                            start_new_session=True, preexec_fn=set_parent_death_signal)  # gone if pytest is killed
+                            start_new_session=True, preexec_fn=as_foreground_child)  # gone if pytest is killed
 
 
 def free_port() -> int:

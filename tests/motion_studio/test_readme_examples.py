@@ -27,8 +27,7 @@ from pathlib import Path
 import pytest
 import typer
 
-from kinematics.child_process import set_parent_death_signal
-from tests.process_audit import wait_for_line
+from tests.process_audit import as_foreground_child, wait_for_line
 
 ROOT = Path(__file__).resolve().parents[2]
 CLI = [sys.executable, "-m", "motion_studio"]
@@ -139,7 +138,7 @@ def test_readme_example_works_as_written(args, scratch):
                                 cwd=scratch, env=env(), capture_output=True, text=True, timeout=180)
         assert played.returncode == 0, played.stderr[-2000:]
     process = subprocess.Popen(CLI + args, cwd=scratch, env=env(), stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                               text=True, start_new_session=True, preexec_fn=set_parent_death_signal)
+                               text=True, start_new_session=True, preexec_fn=as_foreground_child)
     try:
         wait_for_line(process, SERVED_LINE)
         assert process.poll() is None
