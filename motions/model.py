@@ -24,6 +24,9 @@ from motions.joints import canonical_sorted
 XML = "xml"
 WEBOTS = "webots"
 FORMATS: tuple[str, ...] = (XML, WEBOTS)
+#: Motion constant bounding the joint speed of the move into a motion's first keyframe [rad/s] (written by the
+#: stand-up generator, read by ``agent.motion.controller`` in place of its own bound).
+BLEND_SPEED_CONSTANT = "blend_speed_rad_s"
 
 
 @dataclass(frozen=True)

@@ -46,12 +46,11 @@ from agent.motion.dynamic import DynamicParams
 from agent.motion.library import MotionLibrary, WebotsTiming
 from kinematics.spec import robot_spec
 from motions import XML, Keyframe, Motion
+from motions.model import BLEND_SPEED_CONSTANT
 from agent.protocol.constants import CYCLE_S
 
 #: Head joints (driven by ``MotionRequest.head_deg`` when set, as the seed agent drives the head apart).
 HEAD_JOINTS = ("hj1", "hj2")
-#: Motion constant that replaces ``ControllerConfig.blend_speed_rad_s`` for that motion (the stand-ups set it).
-BLEND_CONSTANT = "blend_speed_rad_s"
 #: Guard against a loop of skipped phases (every phase of a cycle skipped).
 _MAX_SKIPS = 64
 
@@ -411,7 +410,7 @@ class MotionController:
             playback.first = False
             largest = max((abs(a - current[w]) for w, a in keyframe.targets.items() if a is not None and w in current),
                           default=0.0)
-            speed = float(playback.motion.constants.get(BLEND_CONSTANT, self.config.blend_speed_rad_s))
+            speed = float(playback.motion.constants.get(BLEND_SPEED_CONSTANT, self.config.blend_speed_rad_s))
             blend_cycles = math.ceil(largest / speed / CYCLE_S - 1e-9)
             if blend_cycles > cycles:
                 playback.time_s += (blend_cycles - cycles) * CYCLE_S

@@ -109,12 +109,7 @@ class KickToward(Skill):
         """The normal kick's tolerances: a long kick whose narrow window the ball misses kicks the normal kick
         where that one would kick now (a short kick now beats a long one after more corrections)."""
         if self.strong:  # the long kick hits well only from its spot to 2 cm beyond
-            self.config = replace(self.config,
-                                  forward_min_m=max(self.config.forward_min_m, self.config.strong_loose_forward_min_m),
-                                  loose_forward_min_m=max(self.config.loose_forward_min_m,
-                                                          self.config.strong_loose_forward_min_m),
-                                  loose_forward_max_m=min(self.config.loose_forward_max_m,
-                                                          self.config.strong_loose_forward_max_m))
+            self.config = self.config.for_strong_kick()
         reach = f" {distance_m:.1f} m" if distance_m is not None else ""
         self.name = f"kick{' strong' if self.strong else ''}{reach} toward ({target_x_m:.1f}, {target_y_m:.1f})"
         self.reset()

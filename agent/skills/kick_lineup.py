@@ -74,7 +74,7 @@ class KickConfig:
     6 cm beyond it). KickToward asked for 2, 3 and 4 m on ours (seeds 0-2, 3 kicks each, ``motion_studio.
     skill_bench.kick.controlled_trials``): within +-1 m 15 -> 21 of 27, grazes 8 -> 3, 3.2 s longer on
     average, against the loose window's 0.08."""
-    strong_loose_forward_min_m: float = 0.0
+    strong_forward_min_m: float = 0.0
     """The long kick's window (``KickToward(strong=True)``, ``kick_strong``; it bounds the strict window too),
     from [m]... On the real server with its landing retimed (``kick_check --offsets-cm=-1..2``, types 0, 2, 4):
     5.1-5.6 m from the spot to 2 cm beyond (type 4 4.0-5.4), 0.9-4.0 m from 1 cm short and once from 0.5 cm
@@ -84,7 +84,7 @@ class KickConfig:
     (fell), 2.4-2.7, 0.0-0.1, 4.4-4.7, 4.6, 0.0 m from -4, -3, -2, -1.5, -1..+2, +2.5, +3 cm: short of the
     window the toe stubs the ground before the ball, beyond it the swinging foot comes down on the ball; outside
     it the skill kicks the normal kick where that one would kick)..."""
-    strong_loose_forward_max_m: float = 0.02
+    strong_forward_max_m: float = 0.02
     """... to [m]."""
     walk_in_target_m: float = 0.015
     """A walk-in aims to leave the ball this far beyond its spot [m]..."""
@@ -164,6 +164,13 @@ class KickConfig:
     """Give up after the ball has been lost this long [s]."""
     head_pitch_deg: float = -45.0
     """Head pitch while lining up close to the ball [deg] (down: the ball lies at the feet)."""
+
+    def for_strong_kick(self) -> KickConfig:
+        """These tolerances with both windows along the kick line kept within the long kick's
+        (``strong_forward_min_m`` / ``strong_forward_max_m``)."""
+        return replace(self, forward_min_m=max(self.forward_min_m, self.strong_forward_min_m),
+                       loose_forward_min_m=max(self.loose_forward_min_m, self.strong_forward_min_m),
+                       loose_forward_max_m=min(self.loose_forward_max_m, self.strong_forward_max_m))
 
     def walk_in_m(self, strides: int) -> float:
         """Distance of a forward walk stopped in its ``strides``-th cycle (>= 1) [m]."""

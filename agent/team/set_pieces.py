@@ -111,7 +111,7 @@ def kick_window(ball_ego: tuple[float, float], spot_forward_m: float, spot_left_
 
 
 #: The long kick's set-piece window (``kick_strong``): along the kick line the kick skill's (``KickConfig.
-#: strong_loose_forward_min_m`` / ``_max_m``, whose docstrings have the measured cliffs), and across its spot
+#: strong_forward_min_m`` / ``_max_m``, whose docstrings have the measured cliffs), and across its spot
 #: this far [m] (on the real server 5.0-5.7 m with the ball 1.5 and 3 cm across, ours 4.2-4.8 m).
 LONG_KICK_LATERAL_M = 0.03
 
@@ -119,7 +119,7 @@ LONG_KICK_LATERAL_M = 0.03
 def long_kick_window(ball_ego: tuple[float, float], spot_forward_m: float, spot_left_m: float) -> bool:
     """The ball lies where the long kick sends it its full distance: a set piece plays it instead of the kick."""
     forward, left = ball_ego[0] - spot_forward_m, ball_ego[1] - spot_left_m
-    return (KickConfig.strong_loose_forward_min_m <= forward <= KickConfig.strong_loose_forward_max_m
+    return (KickConfig.strong_forward_min_m <= forward <= KickConfig.strong_forward_max_m
             and abs(left) <= LONG_KICK_LATERAL_M)
 
 

@@ -224,20 +224,20 @@ class SoccerBehavior:
         if KICK in self.motion.library and standing and seen is not None and seen.forward_m is not None \
                 and seen.age_s(world.now_s) < 0.2 and not self.skills.recovering:
             ball_ego = (seen.forward_m, seen.left_m or 0.0)
-            if LONG_KICK in self.motion.library and self._facing(world, aim, SET_PIECE_AIM_DEG):
+            facing = self._facing(world, aim, SET_PIECE_AIM_DEG)
+            if LONG_KICK in self.motion.library and facing:
                 long_spot = self.motion.library.get(LONG_KICK).constants
                 if long_kick_window(ball_ego, float(long_spot.get("ball_forward_m", 0.125)),
                                     float(long_spot.get("ball_left_m", 0.0))):
                     self._use(("set_piece_kick",), lambda: PlayMotion(LONG_KICK))
                     return
             spot = self.motion.library.get(KICK).constants
-            move = set_piece_move((seen.forward_m, seen.left_m or 0.0), float(spot.get("ball_forward_m", 0.125)),
-                                  float(spot.get("ball_left_m", 0.0)),
+            move = set_piece_move(ball_ego, float(spot.get("ball_forward_m", 0.125)), float(spot.get("ball_left_m", 0.0)),
                                   steps if STEP_FORWARD in self.motion.library else SET_PIECE_MAX_STEPS)
             step = {"step": STEP_FORWARD, "step_left": STEP_LEFT, "step_right": STEP_RIGHT}.get(move or "")
             if step is not None and step not in self.motion.library:
                 move = None
-            if move is not None and self._facing(world, aim, SET_PIECE_AIM_DEG):
+            if move is not None and facing:
                 if step is not None:
                     self._use(("set_piece_step", steps + 1), lambda: PlayMotion(step))
                 else:

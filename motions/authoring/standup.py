@@ -45,7 +45,7 @@ from motions.authoring.common import (ARMS, FILES_DIR, LEGS, PARAMS_DIR, Keyfram
 from motions.authoring.gait import STANCE_FLAG, GaitParams, stance_pose
 from motions.authoring.gait_params import GAIT_PARAMS_PATH, load_gait_params
 from motions.authoring.toml_text import toml_value
-from motions.model import XML, Keyframe, Motion
+from motions.model import BLEND_SPEED_CONSTANT, XML, Keyframe, Motion
 
 PARAMS_PATH = PARAMS_DIR / "standup.toml"
 #: The stand-ups: motion name = section name; the side the robot lies on.
@@ -372,6 +372,12 @@ def meta_comments(path: Path, section: str) -> tuple[str, ...]:
     return tuple(f" {key}: {value} ".replace("--", "- -") for key, value in read_meta(path, section).items())
 
 
+def ground_phases_comment(params: StandUpParams) -> str:
+    """A roll's header line: its ground phases and their durations (the angles are in the parameter file)."""
+    return (" Ground phases only (left side, right mirrored): "
+            + "; ".join(f"{g.name} {g.duration_ms} ms" for g in params.ground) + " ")
+
+
 def stance_params(gait_path: Path = GAIT_PARAMS_PATH) -> GaitParams:
     """The walk stance: ``[stand]`` of the gait parameter file.
 
@@ -459,7 +465,7 @@ def _phase(pose: KeyPose, **attributes: object) -> Keyframe:
 
 def blend_constants(params: StandUpParams) -> dict[str, float]:
     """The motion constants of a stand-up or roll: its blend speed when the section sets one."""
-    return {"blend_speed_rad_s": float(params.blend_speed_rad_s)} if params.blend_speed_rad_s > 0 else {}
+    return {BLEND_SPEED_CONSTANT: float(params.blend_speed_rad_s)} if params.blend_speed_rad_s > 0 else {}
 
 
 def build_standup(name: str, params: StandUpParams, side: str, stance: GaitParams,
@@ -539,8 +545,7 @@ def build_all(path: Path = PARAMS_PATH, gait_path: Path = GAIT_PARAMS_PATH) -> d
         comments = tuple(c.replace("sagittal IK on kinematics.fk.NaoKinematics, stance by kinematics.ik.WholeBodyIK",
                                    "joint-space keyframes") for c in
                          header("motions.authoring.standup", path, name, replace(params, ground=()), command))
-        comments += (" Ground phases only (left side, right mirrored): " + "; ".join(
-            f"{g.name} {g.duration_ms} ms" for g in params.ground) + " ",)
+        comments += (ground_phases_comment(params),)
         comments += meta_comments(path, name)
         out[name] = build_roll(name, params, comments)
     return out
@@ -566,5 +571,6 @@ if __name__ == "__main__":
 
 
 __all__ = ["GroundPose", "KeyPose", "ROLLS", "SagittalSolver", "StandUpParams", "STANDUPS", "blend_constants",
-           "build_all", "build_roll", "build_standup", "dumps_section", "key_poses", "load_standup_params",
-           "meta_comments", "parse_standup_params", "stance_params", "symmetric_angles_rad", "write_all"]
+           "build_all", "build_roll", "build_standup", "dumps_section", "ground_phases_comment", "key_poses",
+           "load_standup_params", "meta_comments", "parse_standup_params", "stance_params", "symmetric_angles_rad",
+           "write_all"]

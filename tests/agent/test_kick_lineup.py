@@ -118,9 +118,7 @@ def test_small_heading_error_is_turned_out_only_while_there_is_time():
 
 
 STRONG_SPOTS = [Spot("kick_strong", 0.121, 0.02), Spot("kick_strong_left", 0.121, -0.02)]
-STRONG_CONFIG = KickConfig(forward_min_m=CONFIG.strong_loose_forward_min_m,
-                           loose_forward_min_m=CONFIG.strong_loose_forward_min_m,
-                           loose_forward_max_m=CONFIG.strong_loose_forward_max_m)
+STRONG_CONFIG = CONFIG.for_strong_kick()
 
 
 def _decide_strong(ball: tuple[float, float], fine_steps: int = 0):
