@@ -14,9 +14,12 @@ from pathlib import Path
 
 import motions
 from motions import Motion
+from motions.errors import MotionFormatError
 
 #: The motion files shipped with the toolkit.
 DEFAULT_MOTION_DIR = Path(motions.__file__).resolve().parent / "files"
+#: How robot types other than 0 play the shared files of a motion folder (`_apply_type_settings`).
+TYPES_FILE = "robot_types.toml"
 
 
 @dataclass(frozen=True)
@@ -69,6 +72,12 @@ class MotionLibrary:
         except KeyError:
             raise KeyError(f"unknown motion {name!r}; known: {', '.join(sorted(self._motions)) or 'none'}") from None
 
+    def remove(self, name: str) -> None:
+        """Drop the motion called ``name`` and its playback settings (nothing if there is none)."""
+        self._motions.pop(name, None)
+        self.webots_timing.pop(name, None)
+        self.gain_bases.pop(name, None)
+
     def __contains__(self, name: object) -> bool:
         return name in self._motions
 
@@ -117,12 +126,15 @@ def _load(path: Path) -> Motion:
     return motion
 
 
-def default_library(robot_type: int = 0, folder: str | Path | None = None) -> MotionLibrary:
-    """The shipped motions for a robot type: ``motions/files`` then ``motions/files/type<N>`` on top, with
-    the turn motions' gain bases and Webots timings of ``motions/files/playback.toml`` if present.
+def default_library(robot_type: int = 0, folder: str | Path | None = None, *,
+                    include_withheld: bool = False) -> MotionLibrary:
+    """The shipped motions for a robot type: ``motions/files`` then ``motions/files/type<N>`` on top, with the
+    turn motions' gain bases and Webots timings of ``motions/files/playback.toml`` if present, and the robot
+    type's constant offsets and withheld motions of ``robot_types.toml`` (shared files that type falls with are
+    left out unless ``include_withheld``, to measure them).
 
     Raises:
-        MotionFormatError: a malformed motion file.
+        MotionFormatError: a malformed motion file, or a bad ``robot_types.toml`` entry.
     """
     import tomllib
 
@@ -139,4 +151,66 @@ def default_library(robot_type: int = 0, folder: str | Path | None = None) -> Mo
         library.gain_bases.update(settings.get("gain_bases", {}))
         for name, table in settings.get("webots_timing", {}).items():
             library.webots_timing[name] = WebotsTiming(**table)
+    types_path = root / TYPES_FILE
+    if types_path.is_file():
+        _apply_type_settings(library, robot_type, types_path, include_withheld)
     return library
+
+
+def _apply_type_settings(library: MotionLibrary, robot_type: int, path: Path, include_withheld: bool) -> None:
+    """``[type<N>]`` of ``TYPES_FILE``: add its ``constant_offsets`` (motion -> constant -> number) to the motions'
+    XML constants, then drop its ``withheld`` motions (unless ``include_withheld``).
+
+    Why: a robot type that plays type 0's file (no file of its own) meets the ball elsewhere with its own leg
+    lengths, and may fall where type 0 stands; the spot a skill lines up for is the file's constant, and a skill
+    plays a motion only if the library has it, so a type's shift and its exclusions live here instead of in
+    copies of whole files.
+
+    Raises:
+        MotionFormatError: an unknown motion or constant, or a value of the wrong kind (file, line, field).
+    """
+    import tomllib
+
+    text = path.read_text(encoding="utf-8")
+    lines = text.splitlines()
+    try:
+        settings = tomllib.loads(text).get(f"type{robot_type}", {})
+    except tomllib.TOMLDecodeError as error:
+        raise MotionFormatError(f"not valid TOML: {error}", path=str(path)) from None
+
+    def error(section: str, detail: str, key: str | None = None) -> MotionFormatError:
+        line = next((i for i, row in enumerate(lines, 1) if row.strip() == f"[{section}]"), None)
+        if key is not None and line is not None:   # the key's own line in that section, if written there
+            for i, row in enumerate(lines[line:], line + 1):
+                if row.lstrip().startswith("["):
+                    break
+                if row.split("=")[0].strip() == key:
+                    line = i
+                    break
+        return MotionFormatError(f"[{section}]: {detail}", path=str(path), line=line, field=key)
+
+    section = f"type{robot_type}"
+    for name, offsets in settings.get("constant_offsets", {}).items():
+        where = f"{section}.constant_offsets.{name}"
+        if not isinstance(offsets, Mapping):
+            raise error(where, f"expected a table of constant = offset, got {offsets!r}")
+        if name not in library:
+            raise error(where, f"no motion {name!r} for robot type {robot_type}")
+        motion = library.get(name)
+        constants = dict(motion.constants)
+        for key, offset in offsets.items():
+            if key not in constants:
+                raise error(where, f"motion {name!r} has no constant {key!r} (it has "
+                                   f"{', '.join(sorted(constants)) or 'none'})", key)
+            if isinstance(offset, bool) or not isinstance(offset, (int, float)):
+                raise error(where, f"expected a number, got {offset!r}", key)
+            constants[key] += float(offset)
+        motion.constants = constants   # (this library's own copy: `_load` hands out a fresh object per load)
+    withheld = settings.get("withheld", [])
+    if not isinstance(withheld, list) or not all(isinstance(name, str) for name in withheld):
+        raise error(section, f"expected a list of motion names, got {withheld!r}", "withheld")
+    for name in withheld:
+        if name not in library:
+            raise error(section, f"no motion {name!r} to withhold", "withheld")
+        if not include_withheld:
+            library.remove(name)

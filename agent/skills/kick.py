@@ -213,6 +213,10 @@ class KickToward(Skill):
 
     def _decide(self, world: WorldModel, motion: MotionController, ball: tuple[float, float]) -> MotionRequest:
         pose = world.pose
+        if self.strong and STRONG not in motion.library:
+            # A robot type without the long kick (agent.motion.library: withheld) plays the kick with its own
+            # windows, not the long kick's narrow ones.
+            self.strong, self.config = False, self._fallback_config
         if pose is None and math.hypot(*ball) > self.config.approach_far_m:
             return self._wait_for_pose(world)  # not localized: no aim to walk round for; look at the landmarks
         spots = kick_spots(motion, self.strong)

@@ -242,9 +242,11 @@ class MotionSource:
     folder: Path | None = None
     revision: str = "worktree"
 
-    def library(self, robot_type: int = 0) -> MotionLibrary:
-        """The motions a robot of ``robot_type`` plays (its own folder's files over the shared ones)."""
-        return default_library(robot_type, self.folder / "files" if self.folder is not None else None)
+    def library(self, robot_type: int = 0, include_withheld: bool = False) -> MotionLibrary:
+        """The motions a robot of ``robot_type`` plays (its own folder's files over the shared ones; with
+        ``include_withheld`` also the shared ones it does not play, to measure them)."""
+        return default_library(robot_type, self.folder / "files" if self.folder is not None else None,
+                               include_withheld=include_withheld)
 
     def controller(self, robot_type: int = 0) -> MotionController | None:
         """A motion controller on these motions (None: SkillBehavior's default, the working tree's)."""

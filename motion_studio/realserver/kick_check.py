@@ -103,7 +103,7 @@ def main(argv: list[str] | None = None) -> None:
 
         ensure_private_network("motion_studio.realserver.kick_check", list(argv) if argv is not None else sys.argv[1:])
     source = motion_source(args.motions_rev, Path(tempfile.mkdtemp(prefix="motions_")))
-    library = source.library(args.robot_type)
+    library = source.library(args.robot_type, include_withheld=True)   # a named motion is measured, played or not
     robot_type = args.robot_type
     servers: dict[str, Rollout] = {
         "ours": lambda lib, motion, placement: run_kick(lib, motion, placement, robot_type=robot_type)}

@@ -49,6 +49,7 @@ from motion_studio.realserver.process import reexec_in_netns
 from motion_studio.realserver.session import STALL_S, RealSession
 from motion_studio.scenarios import Truth
 from agent.protocol.constants import BALL_RADIUS_M, CYCLE_S
+from sim.engine import BEAM_HEIGHT_M
 
 logger = logging.getLogger(__name__)
 
@@ -70,6 +71,20 @@ _TIME = re.compile(rb"\(time ([0-9.eE+-]+)\)")
 _GAME_TIME = re.compile(rb"\(t ([0-9.]+)\)")
 
 
+#: Height of the trainer move per robot type [m]: the beam's AgentRadius (REFERENCE §3.7), 0.40, but for type 3
+#: 0.39. Measured on the real server (2026-11-27, kick from its spot and 1 and 2 cm beyond): moved to 0.40, type 3
+#: toppled during the settle in every run (torso 0.25 m, up-axis z 0.30 when the ball was placed: the kick then
+#: "fell" and moved the ball 0.2 m backward); moved to 0.39 or 0.38 it stood (torso 0.377 m, up-axis z 0.975) and
+#: kicked 4.7-5.1 m. Type 0 stays at 0.40: at 0.39 it settled otherwise (up-axis z 0.982 instead of 0.974) and
+#: its kick went 3.3-4.1 m instead of 3.8-4.3, so its tuned figures keep their harness.
+MOVE_HEIGHT_M = {3: 0.39}
+
+
+def move_height_m(robot_type: int) -> float:
+    """The trainer move's torso height for ``robot_type`` [m] (``MOVE_HEIGHT_M``)."""
+    return MOVE_HEIGHT_M.get(robot_type, BEAM_HEIGHT_M)
+
+
 @dataclass(frozen=True)
 class RealKickConfig:
     """Where and how long (the defaults follow the kick cases of motion_studio.realserver.cases)."""
@@ -78,8 +93,8 @@ class RealKickConfig:
     """Where the robot is moved (own half: a kick along +x stays far from goals and lines) [m]."""
     aim_deg: float = 0.0
     """Kick direction in the field frame [deg]."""
-    move_z_m: float = 0.40
-    """Height of the trainer move (the beam's AgentRadius, REFERENCE §3.7) [m]."""
+    move_z_m: float | None = None
+    """Height of the trainer move [m]; None = `move_height_m` of the robot type."""
     settle_cycles: int = 70
     """Stance cycles after the move before the ball is placed. The move puts the torso upright while the
     standing robot leans 12.7 deg forward, so it lands on its heels and rocks (pitch 0 -> 21 -> 11 deg);
@@ -383,7 +398,8 @@ class RealKickBench:
         self.behavior.set_skill(PlayMotion("stand"))
         self._steps(RESET_POSE_CYCLES)
         # the trainer's move angle is the heading - 90 deg (as the beam's, REFERENCE §3.7)
-        move = f"(agent (unum {UNUM})(team Left)(move {sx} {sy} {config.move_z_m} {heading_deg - 90.0}))"
+        z = config.move_z_m if config.move_z_m is not None else move_height_m(self.robot_type)
+        move = f"(agent (unum {UNUM})(team Left)(move {sx} {sy} {z} {heading_deg - 90.0}))"
         for command in ("(playMode PlayOn)", "(time 0)", move):
             session.command(command)
         self._wake = list(WAKE_HEAD_RAD_S)
