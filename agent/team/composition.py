@@ -2,14 +2,14 @@
 robots of one type and 9 of any two).
 
 Why 0, 2 and 4: those are the types whose every skill works on both servers. Types 1 and 3 (longer legs) stand
-up from both sides since 2026-11-26 (their own stand-ups, ``motions/authoring/standup_types.py``), but the shared
-kick, whose spot is type 0's, is unreliable with them on the real server: with the ball on its spot it grazes it
-(0.36 and 0.33 m against 3.5-4.2 m for types 0, 2 and 4; ``motion-studio real skills kick --type N``); type 1
-kicks 4.3-4.8 m with the ball 1-2 cm off the spot but fell once (``python -m motion_studio.realserver.kick_check
-kick --type 1``), and type 3 fell in every kick of that check. Their dribble took 40 s (type 1, 2026-11-27) or
-more than 45 s (type 3) for 10 m there. The types cycle by uniform number, so every team size from 3 up is legal
-(11 players: four of type 0, four of type 2, three of type 4) and the goalkeeper (unum 1) is type 0, the
-type every motion was tuned on.
+up from both sides since 2026-11-26 (their own stand-ups, ``motions/authoring/standup_types.py``) and, since
+2026-11-27, kick from their own spot (``motions/files/robot_types.toml``: the shared kick grazed the ball from
+type 0's spot on the real server): type 1 4.2-4.8 m there but it falls after about half of its kicks, type 3
+4.8-5.1 m without a fall (ours falls after every type-3 kick: a disagreement of ours); neither plays the long
+kick, which both fall with. Their dribble took 40 s (type 1, 2026-11-27) or more than 45 s (type 3) for 10 m
+on the real server. The types cycle by uniform number, so every team size from 3 up is legal (11 players: four
+of type 0, four of type 2, three of type 4) and the goalkeeper (unum 1) is type 0, the type every motion was
+tuned on.
 """
 
 from __future__ import annotations
