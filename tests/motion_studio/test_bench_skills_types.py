@@ -55,3 +55,28 @@ def test_quick_walk_on_type_1_plays_type_1(tmp_path):
     speed1 = type1["forward_20m"]["steady_speed_m_s"]
     assert abs(speed1 - measured["measured_forward_m_s"]) < 0.02, speed1
     assert type1["falls"] == 0
+
+
+def test_quick_kick_on_type_1_kicks_from_its_own_spot_and_plays_the_kick_for_the_long_one(tmp_path):
+    """Type 1 kicks from its own spot (motions/files/robot_types.toml: 2.5 cm beyond type 0's, where the shared
+    kick grazed the ball on the real server and, from -1.5 to 0 cm, on ours: 1.1-1.2 m) and does not play the
+    long kick it falls with: its strong figures are the kick's."""
+    _register_commands()
+    result = CliRunner().invoke(app, ["bench", "skills", "--skill", "kick", "--quick", "--json", "--type", "1",
+                                      "--out", str(tmp_path)])
+    assert result.exit_code == 0, result.output
+    kick = json.loads(result.output.strip().splitlines()[-1])["kick"]   # one type: not keyed by type
+    assert kick["robot_type"] == 1
+    assert kick["kick_strong"]["played_as"] == "kick" and "kick_strong" not in kick["trials"]
+    assert kick["kick"]["falls"] == 0
+
+
+@pytest.mark.parametrize("offset_cm", [-1.5, -0.75, 0.0, 0.75, 1.5])
+def test_type_1_kicks_the_ball_on_from_its_own_spot(offset_cm):
+    """Ours from type 1's spot and the line-up's errors along the kick line: 5.0 m (from type 0's spot and up to
+    1.5 cm short of it 1.1-1.2 m: the toes met the ball's lower half)."""
+    from agent.motion import default_library
+    from motion_studio.kick_rollout import Placement, run_kick
+
+    run = run_kick(default_library(1), "kick", Placement(offset_cm / 100.0, 0.0, 0.0), robot_type=1)
+    assert run.distance_m > 4.0 and not run.fell, (run.distance_m, run.fell)
