@@ -46,7 +46,11 @@ def check_skills(names: list[str], motions: MotionSource, scripts: Path, out: Pa
     for name in names:
         case = replace(CASES[name], robot_type=robot_type)
         if case.motion is not None and case.motion not in available:
-            report(f"{name}: skipped (no motion {case.motion!r} at {motions.revision})")
+            if case.motion in motions.library(robot_type, include_withheld=True):
+                report(f"{name}: skipped (robot type {robot_type} does not play {case.motion!r}: motions/files/"
+                       f"robot_types.toml)")
+            else:
+                report(f"{name}: skipped (no motion {case.motion!r} at {motions.revision})")
             continue
         if replay_sim:  # physics alone: our agent's answers on our simulator, sent to both
             sim_run = run_sim(case, motions)
