@@ -20,12 +20,11 @@ import logging
 
 from motions.errors import ConversionError
 from motions.joints import canonical_sorted
-from motions.model import WEBOTS, XML, JointTarget, Keyframe, Motion
+from motions.model import SERVER_CYCLE_MS, WEBOTS, XML, JointTarget, Keyframe, Motion
 from motions.numbers import is_whole
 
 logger = logging.getLogger(__name__)
 
-SERVER_CYCLE_MS = 20  # REFERENCE §1: one simulation cycle
 
 
 def _next_chain(motion: Motion, unroll_cycle: bool) -> list[Keyframe]:

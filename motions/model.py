@@ -21,6 +21,9 @@ from dataclasses import dataclass, field
 from motions.errors import MotionFormatError
 from motions.joints import canonical_sorted
 
+#: One server cycle [ms] (REFERENCE §1): the motions room's one definition of it (agent.protocol.constants.CYCLE_S
+#: is the protocol's; this room may not import the agent's).
+SERVER_CYCLE_MS = 20
 XML = "xml"
 WEBOTS = "webots"
 FORMATS: tuple[str, ...] = (XML, WEBOTS)

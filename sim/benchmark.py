@@ -57,7 +57,7 @@ class WaveAgent:
         self.cycles += 1
         if self.cycles == 1:
             return format_actions([Init(0, self.team)]) + b"(syn)"
-        angle = 3.0 * (self.cycles * 0.02) + self.phase
+        angle = 3.0 * (self.cycles * CYCLE_S) + self.phase
         return _COMMAND % tuple([amplitude * math.sin(angle + i) for i, amplitude in enumerate(_AMPLITUDES)])
 
 

@@ -12,6 +12,8 @@ import time
 from pathlib import Path
 from typing import Any
 
+from agent.protocol.constants import CYCLE_S
+
 #: The benchmark's motion: a two-phase crouch written by hand (no file of motions/ is needed).
 BENCH_MOTION = """<?xml version="1.0" encoding="UTF-8"?>
 <!-- motion-studio bench editor: a two-phase crouch written by hand for the benchmark -->
@@ -98,7 +100,7 @@ def bench_requests(motion_path: Path | None = None, repeats: int = 50, robot_typ
         tab.handle({"op": "preview_start"})
         preview_wall_s = time.perf_counter() - started
         result = tab.preview.result
-        simulated_s = result.cycles * 0.02 if result is not None else float("nan")
+        simulated_s = result.cycles * CYCLE_S if result is not None else float("nan")
     return {"set_joint_ms": _median_ms(timings["set_joint"]), "scrub_ms": _median_ms(timings["scrub"]),
             "ik_ms": _median_ms(timings["ik"]), "scene_bytes_per_edit": int(statistics.median(frame_bytes)),
             "preview_wall_s": round(preview_wall_s, 3),

@@ -31,9 +31,9 @@ from pathlib import Path
 
 from motions.authoring.common import (ANGLE_DECIMALS, ARMS, LEGS, ArmPose, FootPose, KeyframeSolver,
                                       targets_deg)
-from motions.model import XML, JointTarget, Keyframe, Motion
+from motions.model import SERVER_CYCLE_MS, XML, JointTarget, Keyframe, Motion
 
-CYCLE_S = 0.02
+CYCLE_S = SERVER_CYCLE_MS / 1000.0
 #: Flag set while the robot stands in the walk stance (skips the stance phase of walks and kicks).
 STANCE_FLAG = "in_walk_position"
 

@@ -40,9 +40,9 @@ from motions.authoring.common import (ARMS, FILES_DIR, LEGS, PARAMS_DIR, ArmPose
                                       targets_deg)
 from motions.io import save
 from motions.mirror import mirrored_motion
-from motions.model import WEBOTS, Keyframe, Motion
+from motions.model import SERVER_CYCLE_MS, WEBOTS, Keyframe, Motion
 
-CYCLE_S = 0.02
+CYCLE_S = SERVER_CYCLE_MS / 1000.0
 #: The parameter file and its section.
 PARAMS_PATH = PARAMS_DIR / "turn.toml"
 PARAMS_SECTION = "turn"
