@@ -65,6 +65,22 @@ def test_the_kick_off_is_played_within_8_s():
     assert (x * x + y * y) ** 0.5 > 0.5
 
 
+def test_the_kick_off_taker_never_plays_the_ball_again_before_a_teammate_did():
+    """Our kick-off against robots that only stand: from the cycle the kick ends the set piece (PlayOn) the taker
+    is no on-ball player for the next 3 s. Before, it was, for that first cycle (its memory was updated after the
+    on-ball choice) and asked for a dribble 0.02 s after its kick; on the real server a kick-off ended in a free
+    kick for the opponents 0.1 s after the kick (a second touch) in 2 of 8 kick-offs."""
+    engine, host, keys = _our_kick_off_against_standing_robots(15.0)
+    assert engine.referee.play_mode == "PlayOn"
+    taker = host.agents[keys["Left", 2]].behavior
+    roles = [taker.role]
+    for _ in range(round(3.0 / CYCLE_S)):
+        host.run(1)
+        roles.append(taker.role)
+    assert "on_ball" not in roles, roles.index("on_ball")
+    assert engine.referee.play_mode == "PlayOn"   # no free kick for a second touch
+
+
 def test_at_our_kick_off_the_second_attacker_waits_near_the_centre_to_go_for_the_kicked_ball():
     """3 v 3 against robots that only stand, our kick-off: when the taker plays it, unum 3 stands by
     ``KICK_OFF_FOLLOW_SPOT_M`` ahead of the halfway line inside the centre circle (the referee leaves it there),
