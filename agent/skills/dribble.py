@@ -221,7 +221,9 @@ class Dribble(Skill):
         ego = pose.to_ego(*point)
         ball_ego = pose.to_ego(bx, by)
         head = _head(world, ball_ego)
-        under_way = self._steer.turn_step(motion)
+        # A chained turn toward a ball farther than the near-ball turns is checked against where the ball is now.
+        fresh = math.degrees(math.atan2(ego[1], ego[0])) if math.hypot(*ball_ego) > self.config.near_ball_m else None
+        under_way = self._steer.turn_step(motion, fresh)
         if under_way is not None:
             self.mode = "turn"
             return MotionRequest(under_way.motion, under_way.lean, under_way.turn_deg, under_way.gain, head)

@@ -47,3 +47,40 @@ def test_a_straight_walk_is_left_at_once():
     controller, _ = _controller_in_the_cycle(lean=0.0)
     request = _Steer(WalkConfig()).guard(controller, MotionRequest(None))
     assert request.motion is None
+
+
+class _Played:
+    """The part of a motion controller a chained turn reads: how often each motion completed."""
+
+    def __init__(self) -> None:
+        self.completed = {"turn_left": 0, "turn_right": 0, "stand": 0}
+        self.library = {"turn_left", "turn_right", "stand"}
+
+
+def _after_one_turn_motion(planned_deg: float, bearing_deg: float | None):
+    """A chained turn of ``planned_deg`` started, its first turn motion played; the request that follows."""
+    steer, played = _Steer(WalkConfig()), _Played()
+    steer.turn(played, planned_deg)
+    played.completed[steer.turning] += 1
+    return steer.turn_step(played, bearing_deg)
+
+
+def test_a_chained_turn_goes_on_as_planned_without_a_fresh_bearing():
+    request = _after_one_turn_motion(150.0, None)
+    assert request.motion == "turn_left" and request.turn_deg == 150.0 - WalkConfig().turn_motion_deg
+
+
+def test_a_chained_turn_ends_when_the_target_now_lies_the_other_way():
+    """Planned on a stale sighting (the ball at the centre behind the robot) and turned once, the target is now
+    ahead and to the right: no more left turns (before: three more, 3.5 s, then back; ours, kick-off, seed 3)."""
+    assert _after_one_turn_motion(150.0, -10.0).motion == "stand"
+    assert _after_one_turn_motion(-150.0, 20.0).motion == "stand"
+
+
+def test_a_chained_turn_keeps_its_plan_unless_the_target_moved_well_short_of_it():
+    rest = 150.0 - WalkConfig().turn_motion_deg   # 112 deg still to turn as planned
+    assert _after_one_turn_motion(150.0, 50.0).turn_deg == 50.0   # 62 deg short: the target moved
+    assert _after_one_turn_motion(150.0, 80.0).turn_deg == rest   # 32 deg short: the plan (the pose lags)
+    # the pose may not show the whole turn yet: a bearing beyond the plan's rest keeps the plan
+    assert _after_one_turn_motion(-150.0, -170.0).turn_deg == rest
+    assert _after_one_turn_motion(150.0, 10.0).motion == "stand"   # within the chain threshold: done
