@@ -1,15 +1,15 @@
 """Which robot type each of our players asks for (REFERENCE §2.5: a team fields at least 3 types, at most 7
 robots of one type and 9 of any two).
 
-Why 0, 2 and 4: those are the types whose every skill works on both servers. Types 1 and 3 (longer legs) stand
-up from both sides since 2026-11-26 (their own stand-ups, ``motions/authoring/standup_types.py``) and, since
-2026-11-27, kick from their own spot (``motions/files/robot_types.toml``: the shared kick grazed the ball from
-type 0's spot on the real server): type 1 4.2-4.8 m there but it falls after about half of its kicks, type 3
-4.8-5.1 m without a fall (ours falls after every type-3 kick of the kick bench, not in the real-skills case:
-a disagreement of ours); neither plays the long kick, which both fall with. Their dribble took 40 s (type 1,
-2026-11-27) or more than 45 s (type 3) for 10 m on the real server. The types cycle by uniform number, so every team size from 3 up is legal (11 players: four
-of type 0, four of type 2, three of type 4) and the goalkeeper (unum 1) is type 0, the type every motion was
-tuned on.
+Why 0, 2 and 4: those are the types whose every skill works on both servers. Types 1 and 3 (longer legs) stand up
+from both sides since 2026-11-26 (their own stand-ups, ``motions/authoring/standup_types.py``) and, since
+2026-11-27, kick from their own spot (``motions/files/robot_types.toml``: the shared kick grazed the ball from type
+0's spot on the real server): type 1 4.2-4.8 m there but it falls after about half of its kicks, type 3 4.8-5.1 m
+without a fall (ours falls after every type-3 kick of the kick bench, not in the real-skills case: a disagreement
+of ours); neither plays the long kick, which both fall with. Their dribble took 40 s (type 1, 2026-11-27) or more
+than 45 s (type 3) for 10 m on the real server. The types cycle by uniform number, so every team size from 3 up is
+legal (11 players: four of type 0, four of type 2, three of type 4) and the goalkeeper (unum 1) is type 0, the type
+every motion was tuned on.
 """
 
 from __future__ import annotations
