@@ -95,6 +95,8 @@ class Referee:
         self.score_right = 0
         self.events: list[RefereeEvent] = []
         self.fouls: list[Foul] = []
+        self._lifting: set[tuple[FoulType, str, int]] = set()
+        """(type, side, unum) of the foul records of the last cycle: a record repeated in this one is the same foul."""
         self.paused = True
         self.cycle = 0
 
@@ -558,16 +560,22 @@ class Referee:
         if self.paused:
             self.fouls_tracker.reset_all()
             self.self_collisions.reset()
+            self._lifting = set()
             return
         enforced = self._check_self_collisions(world)
         placer = self._placer(world)
         enforced += self.fouls_tracker.update(self._robots, self._ball_pos, self._touching,
                                               world.touching_robot_pairs(), placer)
+        lifting = set()
         for foul_type, team, unum in enforced:
             foul = Foul(len(self.fouls) + 1, foul_type, team, unum, self.game_time_s)
-            self.fouls.append(foul)
+            self.fouls.append(foul)   # every record, as the monitor sends them (a lifted foul: one a cycle)
+            lifting.add((foul_type, team, unum))
+            if (foul_type, team, unum) in self._lifting:
+                continue   # the same foul's next record: one event and one log line per foul
             self.events.append(RefereeEvent("foul", self.game_time_s, self.play_mode, team=team, foul=foul))
             logger.info("foul %s by %s %d at t=%.2f", foul_type.name, team, unum, self.game_time_s)
+        self._lifting = lifting
 
     def _check_self_collisions(self, world: WorldView) -> list[tuple[FoulType, str, int]]:
         """Self-collision (type 7): needs body poses, from `body_pose_source` or else the world's

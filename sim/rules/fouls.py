@@ -351,8 +351,10 @@ class FoulTracker:
                  placer: Placer) -> list[tuple[FoulType, str, int]]:
         """The server's ClearPlayersAutomatic: lift for FoulHoldTime, then place outside the field.
 
-        Touching and illegal defence have already moved the player; they only reset the counters. Each
-        enforcement is reported once (the server re-reports every cycle of the lift).
+        Touching and illegal defence have already moved the player; they only reset the counters (one record).
+        A lifted foul is reported in every cycle of the lift and in the one that places the player outside, as
+        the server records it (a ``Foul`` each cycle ``HaveEnforceableFoul`` holds: 0.5 s / 20 ms + 1 = 26
+        records, measured in the real monitor stream), so the monitor's foul list matches the real one.
         """
         c = self.config
         reported: list[tuple[FoulType, str, int]] = []
@@ -366,8 +368,7 @@ class FoulTracker:
                 reported.append((foul, key[0], key[1]))
                 self.reset_player(key)
                 continue
-            if p.foul_time == 1:
-                reported.append((foul, key[0], key[1]))
+            reported.append((foul, key[0], key[1]))
             if p.foul_time <= c.foul_hold_time_s / c.cycle_s:
                 p.foul_time += 1
                 x, y = placer.pos[key]
