@@ -15,7 +15,7 @@ from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 
 from sim.rules.ball import ball_on_field, goal_of
-from sim.rules.fouls import FoulTracker
+from sim.rules.fouls import FoulRecord, FoulTracker
 from sim.rules.params import (LEFT, PLAY_MODE_INDEX, PLAY_MODES, RIGHT, SIDES, FoulType, RefereeConfig,
                               default_config, in_box, opponent, side_suffix, team_number)
 from sim.rules.pass_mode import PassModeTracker
@@ -95,8 +95,6 @@ class Referee:
         self.score_right = 0
         self.events: list[RefereeEvent] = []
         self.fouls: list[Foul] = []
-        self._lifting: set[tuple[FoulType, str, int]] = set()
-        """(type, side, unum) of the foul records of the last cycle: a record repeated in this one is the same foul."""
         self.paused = True
         self.cycle = 0
 
@@ -560,24 +558,20 @@ class Referee:
         if self.paused:
             self.fouls_tracker.reset_all()
             self.self_collisions.reset()
-            self._lifting = set()
             return
         enforced = self._check_self_collisions(world)
         placer = self._placer(world)
         enforced += self.fouls_tracker.update(self._robots, self._ball_pos, self._touching,
                                               world.touching_robot_pairs(), placer)
-        lifting = set()
-        for foul_type, team, unum in enforced:
+        for foul_type, team, unum, first in enforced:
             foul = Foul(len(self.fouls) + 1, foul_type, team, unum, self.game_time_s)
             self.fouls.append(foul)   # every record, as the monitor sends them (a lifted foul: one a cycle)
-            lifting.add((foul_type, team, unum))
-            if (foul_type, team, unum) in self._lifting:
+            if not first:
                 continue   # the same foul's next record: one event and one log line per foul
             self.events.append(RefereeEvent("foul", self.game_time_s, self.play_mode, team=team, foul=foul))
             logger.info("foul %s by %s %d at t=%.2f", foul_type.name, team, unum, self.game_time_s)
-        self._lifting = lifting
 
-    def _check_self_collisions(self, world: WorldView) -> list[tuple[FoulType, str, int]]:
+    def _check_self_collisions(self, world: WorldView) -> list[FoulRecord]:
         """Self-collision (type 7): needs body poses, from `body_pose_source` or else the world's
         ``robot_body_poses()`` (see sim.monitor.SceneSource); without them the rule is skipped.
 
@@ -589,10 +583,10 @@ class Referee:
             return []
         robots = [(side, unum, robot_type, poses) for side, unum, robot_type, poses in poses_of()
                   if side is not None and unum]
-        fouls: list[tuple[FoulType, str, int]] = []
+        fouls: list[FoulRecord] = []
         for side, unum, effectors in self.self_collisions.check_all(robots, self.game_time_s):
             world.freeze_joints(side, unum, effectors)
-            fouls.append((FoulType.SELF_COLLISION, side, unum))
+            fouls.append(FoulRecord(FoulType.SELF_COLLISION, side, unum))
         return fouls
 
     # ---- helpers -------------------------------------------------------------------------------------

@@ -9,10 +9,21 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import NamedTuple
 
 from sim.rules.params import LEFT, SIDES, FoulType, RefereeConfig, in_box
 from sim.rules.placement import Key, Placer, illegal_defence_position, outside_position
 from sim.world_api import RobotState
+
+
+class FoulRecord(NamedTuple):
+    """One record of a foul, as the server lists it to monitors: a lifted foul has one a cycle of its lift,
+    ``first`` only on the record that opens it (one referee event per foul, every record to the monitor)."""
+
+    foul: FoulType
+    side: str
+    unum: int
+    first: bool = True
 
 
 @dataclass
@@ -96,8 +107,8 @@ class FoulTracker:
     # ---- the cycle -----------------------------------------------------------------------------------
     def update(self, robots: list[RobotState], ball_pos: tuple[float, float, float],
                ball_touchers: list[Key], touching_pairs: list[tuple[Key, Key]], placer: Placer) -> list[
-                   tuple[FoulType, str, int]]:
-        """One cycle of the automatic referee; returns (type, team, unum) of each enforced foul."""
+                   FoulRecord]:
+        """One cycle of the automatic referee; returns the record of each enforced foul."""
         self._all_reset = False
         states = {(r.team, r.unum): r for r in robots}
         for key, robot in states.items():
@@ -115,7 +126,7 @@ class FoulTracker:
         for side in sides:
             self._analyse_touch_groups(side, states, groups, placer, only_new=True)
         placer.rng.shuffle(sides)
-        reported: list[tuple[FoulType, str, int]] = []
+        reported: list[FoulRecord] = []
         for side in sides:
             reported.extend(self._enforce(side, states, ball_pos, placer))
         for key in states:
@@ -348,7 +359,7 @@ class FoulTracker:
         return x <= area[1] if key[0] == LEFT else x >= area[0]
 
     def _enforce(self, side: str, states: dict[Key, RobotState], ball_pos: tuple[float, float, float],
-                 placer: Placer) -> list[tuple[FoulType, str, int]]:
+                 placer: Placer) -> list[FoulRecord]:
         """The server's ClearPlayersAutomatic: lift for FoulHoldTime, then place outside the field.
 
         Touching and illegal defence have already moved the player; they only reset the counters (one record).
@@ -357,7 +368,7 @@ class FoulTracker:
         records, measured in the real monitor stream), so the monitor's foul list matches the real one.
         """
         c = self.config
-        reported: list[tuple[FoulType, str, int]] = []
+        reported: list[FoulRecord] = []
         for key in placer.team(side):
             if key not in states or not self.enforceable(key):
                 continue
@@ -365,10 +376,10 @@ class FoulTracker:
             foul = p.last_foul
             assert foul is not None
             if foul in (FoulType.ILLEGAL_DEFENCE, FoulType.TOUCHING):
-                reported.append((foul, key[0], key[1]))
+                reported.append(FoulRecord(foul, key[0], key[1]))
                 self.reset_player(key)
                 continue
-            reported.append((foul, key[0], key[1]))
+            reported.append(FoulRecord(foul, key[0], key[1], first=p.foul_time == 1))
             if p.foul_time <= c.foul_hold_time_s / c.cycle_s:
                 p.foul_time += 1
                 x, y = placer.pos[key]
