@@ -26,7 +26,10 @@ from agent.protocol.effectors import Action
 from agent.skills.base import PlayMotion, Skill
 from agent.skills.behavior import SkillBehavior
 from agent.skills.dribble import Dribble, DribbleConfig
-from agent.skills.kick import KickToward
+# KICK: the kick a set-piece taker plays once the ball lies in its window (without it, the kick skill);
+# LONG_KICK: the one it plays instead while the ball lies in that one's narrower window.
+from agent.skills.kick import KICK, KickToward
+from agent.skills.kick import STRONG as LONG_KICK
 from agent.skills.kick_lineup import STEP_FORWARD, STEP_LEFT, STEP_RIGHT
 from agent.skills.turn import TurnToFace
 from agent.skills.walk import STAND, WalkTo
@@ -42,10 +45,6 @@ RETARGET_M = 0.5
 #: The goalkeeper re-targets when its guard spot moved this much [m] (a shot's crossing point moves it less
 #: than ``RETARGET_M`` across a goal 2.1 m wide).
 KEEPER_RETARGET_M = 0.2
-#: The kick motion a set-piece taker plays once the ball lies in its window (without it, the kick skill), and
-#: the long kick it plays instead while the ball lies in that one's narrower window.
-KICK = "kick"
-LONG_KICK = "kick_strong"
 #: Facing error a player standing on its spot tolerates before turning to the ball [deg].
 FACE_TOLERANCE_DEG = 20.0
 #: Play modes in which nobody moves (REFERENCE §4.2).
