@@ -332,6 +332,8 @@ def run_real(setup: MatchSetup, kick_off: str, scripts: Path, out: Path) -> Play
         logging.getLogger().removeHandler(counter)
     log_path = out / "real_monitor.log"
     log_path.write_bytes(b"\n".join(monitor.frames) + b"\n" if monitor is not None else b"")
+    if monitor is not None and monitor.failure:
+        notes["monitor"] = monitor.failure  # the log (the match's truth) ends there
     notes["runner"] = {name: (f"{type(o).__name__}: {o}" if isinstance(o, Exception) else
                               {"cycles": o.cycles, "connections": o.connections, "malformed": o.bad_messages,
                                "lost connections": o.lost_connections}) for name, o in outcomes.items()}
@@ -395,6 +397,8 @@ def run_real_cli(setup: MatchSetup, kick_off: str, scripts: Path, out: Path) -> 
             monitor.close()
     log_path = out / "real_monitor.log"
     log_path.write_bytes(b"\n".join(monitor.frames) + b"\n")
+    if monitor.failure:
+        notes["monitor"] = monitor.failure  # the log (the match's truth) ends there
     trouble = ("Traceback", "WARNING", "ERROR", "lost", "malformed", "timed out")
     notes["processes"] = {}
     for name, process, log in processes:

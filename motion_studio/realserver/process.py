@@ -6,6 +6,7 @@ Needs the server built by ``<scripts>/build.sh``; never used by tests.
 
 from __future__ import annotations
 
+import logging
 import os
 import signal
 import socket
@@ -23,6 +24,7 @@ from motion_studio.realserver.paths import DIR_VARIABLE
 #: netns.sh sets this inside the namespace.
 IN_NETNS_VARIABLE = "SS_IN_NETNS"
 AGENT_PORT, MONITOR_PORT = 3100, 3200
+logger = logging.getLogger(__name__)
 
 
 def in_netns() -> bool:
@@ -95,11 +97,19 @@ def connect(port: int, timeout_s: float = 20.0, host: str = "127.0.0.1") -> sock
 
 
 class MonitorLink:
-    """The monitor connection: a thread keeps every frame (raw, parsed afterwards); trainer commands go out."""
+    """The monitor connection: a thread keeps every frame (raw, parsed afterwards); trainer commands go out.
 
-    def __init__(self, port: int = MONITOR_PORT) -> None:
-        self.sock = connect(port)
+    ``failure`` says why the reader stopped before `close` (a socket error, bad framing, or the server closing the
+    connection), else None. Why keep it: the frames are the runs' ground truth, and a dead reader also leaves the
+    server's monitor output unread (a server whose monitor client does not read stalled a kick-off once), so a
+    harness must be able to report it instead of a silent gap.
+    """
+
+    def __init__(self, port: int = MONITOR_PORT, host: str = "127.0.0.1") -> None:
+        self.sock = connect(port, host=host)
         self.frames: list[bytes] = []
+        self.failure: str | None = None
+        self._closing = False
         self.thread = threading.Thread(target=self._read, daemon=True)
         self.thread.start()
 
@@ -107,13 +117,18 @@ class MonitorLink:
         try:
             while (payload := read_frame(self.sock)) is not None:
                 self.frames.append(payload)
-        except (OSError, ValueError):
-            return
+            reason = "the server closed the connection"
+        except (OSError, ValueError) as error:
+            reason = f"{type(error).__name__}: {error}"
+        if not self._closing:
+            self.failure = f"monitor reader stopped after {len(self.frames)} frames: {reason}"
+            logger.warning("%s", self.failure)
 
     def send(self, command: str) -> None:
         write_frame(self.sock, command.encode())
 
     def close(self) -> None:
+        self._closing = True
         try:
             self.sock.shutdown(socket.SHUT_RDWR)
         except OSError:

@@ -169,7 +169,8 @@ def run_real(case: Case, motions: MotionSource, scripts: Path, workdir: Path,
     answers are sent instead of our agent's.
 
     Raises:
-        RealServerError: the server closed the connection before the case ended.
+        RealServerError: the server closed the connection before the case ended, or the monitor connection (the
+            ground truth) failed.
     """
     from sim.replay import read_log
 
@@ -224,6 +225,8 @@ def run_real(case: Case, motions: MotionSource, scripts: Path, workdir: Path,
         sock.close()
         time.sleep(0.3)
         monitor.close()
+        if monitor.failure:  # the ground truth has a gap: no figure from it
+            raise RealServerError(f"{case.name}: {monitor.failure}")
     finally:
         server.stop()
     log_path = workdir / f"monitor_{case.name}.log"
