@@ -8,6 +8,7 @@ Webots files by their file stem. Loading happens here, at construction, never in
 from __future__ import annotations
 
 import pickle
+import tomllib
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
@@ -134,10 +135,8 @@ def default_library(robot_type: int = 0, folder: str | Path | None = None, *,
     left out unless ``include_withheld``, to measure them).
 
     Raises:
-        MotionFormatError: a malformed motion file, or a bad ``robot_types.toml`` entry.
+        MotionFormatError: a malformed motion file, or a bad ``playback.toml`` or ``robot_types.toml`` entry.
     """
-    import tomllib
-
     root = Path(folder) if folder is not None else DEFAULT_MOTION_DIR
     library = MotionLibrary()
     if root.is_dir():
@@ -147,14 +146,45 @@ def default_library(robot_type: int = 0, folder: str | Path | None = None, *,
             library.load_folder(typed)
     settings_path = root / "playback.toml"
     if settings_path.is_file():
-        settings = tomllib.loads(settings_path.read_text(encoding="utf-8"))
-        library.gain_bases.update(settings.get("gain_bases", {}))
-        for name, table in settings.get("webots_timing", {}).items():
-            library.webots_timing[name] = WebotsTiming(**table)
+        _apply_playback_settings(library, settings_path)
     types_path = root / TYPES_FILE
     if types_path.is_file():
         _apply_type_settings(library, robot_type, types_path, include_withheld)
     return library
+
+
+def _line_of(lines: list[str], section: str, key: str | None = None) -> int | None:
+    """1-based line of ``[section]`` in a TOML file's ``lines``, or of ``key`` inside it if written there."""
+    line = next((i for i, row in enumerate(lines, 1) if row.strip() == f"[{section}]"), None)
+    if key is not None and line is not None:
+        for i, row in enumerate(lines[line:], line + 1):
+            if row.lstrip().startswith("["):
+                break
+            if row.split("=")[0].strip() == key:
+                return i
+    return line
+
+
+def _apply_playback_settings(library: MotionLibrary, path: Path) -> None:
+    """``playback.toml``: the turn motions' gain bases and the Webots motions' timings.
+
+    Raises:
+        MotionFormatError: not TOML, or a timing entry that is no table of WebotsTiming fields (file, line, motion).
+    """
+    text = path.read_text(encoding="utf-8")
+    try:
+        settings = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as error:
+        raise MotionFormatError(f"not valid TOML: {error}", path=str(path)) from None
+    library.gain_bases.update(settings.get("gain_bases", {}))
+    for name, table in settings.get("webots_timing", {}).items():
+        try:
+            if not isinstance(table, Mapping):
+                raise ValueError(f"expected a table of WebotsTiming fields, got {table!r}")
+            library.webots_timing[name] = WebotsTiming(**table)
+        except (TypeError, ValueError) as error:
+            raise MotionFormatError(f"[webots_timing] {name}: {error}", path=str(path),
+                                    line=_line_of(text.splitlines(), "webots_timing", name), field=name) from None
 
 
 def _apply_type_settings(library: MotionLibrary, robot_type: int, path: Path, include_withheld: bool) -> None:
@@ -169,8 +199,6 @@ def _apply_type_settings(library: MotionLibrary, robot_type: int, path: Path, in
     Raises:
         MotionFormatError: an unknown motion or constant, or a value of the wrong kind (file, line, field).
     """
-    import tomllib
-
     text = path.read_text(encoding="utf-8")
     lines = text.splitlines()
     try:
@@ -179,15 +207,8 @@ def _apply_type_settings(library: MotionLibrary, robot_type: int, path: Path, in
         raise MotionFormatError(f"not valid TOML: {error}", path=str(path)) from None
 
     def error(section: str, detail: str, key: str | None = None) -> MotionFormatError:
-        line = next((i for i, row in enumerate(lines, 1) if row.strip() == f"[{section}]"), None)
-        if key is not None and line is not None:   # the key's own line in that section, if written there
-            for i, row in enumerate(lines[line:], line + 1):
-                if row.lstrip().startswith("["):
-                    break
-                if row.split("=")[0].strip() == key:
-                    line = i
-                    break
-        return MotionFormatError(f"[{section}]: {detail}", path=str(path), line=line, field=key)
+        return MotionFormatError(f"[{section}]: {detail}", path=str(path), line=_line_of(lines, section, key),
+                                 field=key)
 
     section = f"type{robot_type}"
     for name, offsets in settings.get("constant_offsets", {}).items():

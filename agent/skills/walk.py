@@ -164,7 +164,7 @@ class _Steer:
         place at the centre, saw it rolling 2.8 m ahead one cycle later, and turned on for 3.5 s, then back)."""
         if self.turning is None and not self._settle_cycles:
             return None
-        if motion.completed[self.turning] > self._turns_before:
+        if self.turning is not None and motion.completed[self.turning] > self._turns_before:
             left = max(0.0, self._turn_deg - self.config.turn_motion_deg)   # still to turn, as planned [deg]
             if bearing_deg is not None:   # ... unless the target moved well away from where it was planned
                 toward = bearing_deg if self.turning == TURN_LEFT else -bearing_deg

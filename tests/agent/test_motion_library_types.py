@@ -87,3 +87,23 @@ def test_offsets_add_to_the_files_constants_and_leave_type_0_alone(tmp_path: Pat
     assert typed.get("kick").constants["ball_left_m"] == pytest.approx(base.get("kick").constants["ball_left_m"] + 0.005)
     assert "kick_strong" in base and "kick_strong" not in typed
     assert default_library(2, folder).get("kick").constants == typed.get("kick").constants   # not added twice
+
+
+@pytest.mark.parametrize("text, line, field, words", [
+    ("[webots_timing]\nturn_left = { use_file_times = true, duration_cycles = 0 }\n", 2, "turn_left", ">= 1"),
+    ("[gain_bases]\nturn_left = \"turn_left_base\"\n\n[webots_timing]\nturn_left = { pose_steps = 2 }\n", 5,
+     "turn_left", "pose_steps"),
+    ("[webots_timing]\nturn_left = 2\n", 2, "turn_left", "a table of WebotsTiming fields"),
+    ("[webots_timing\n", None, None, "not valid TOML"),
+])
+def test_a_bad_playback_entry_names_the_file_the_line_and_the_motion(tmp_path: Path, text: str, line: int | None,
+                                                                    field: str | None, words: str) -> None:
+    folder = tmp_path / "files"
+    folder.mkdir()
+    shutil.copy(DEFAULT_MOTION_DIR / "stand.xml", folder / "stand.xml")
+    (folder / "playback.toml").write_text(text, encoding="utf-8")
+    with pytest.raises(MotionFormatError) as caught:
+        default_library(0, folder)
+    error = caught.value
+    assert error.path == str(folder / "playback.toml") and error.line == line and error.field == field
+    assert words in str(error)

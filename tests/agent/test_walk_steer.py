@@ -7,6 +7,7 @@ from __future__ import annotations
 import math
 
 from agent.motion import MotionController, MotionRequest, default_library, load_dynamic_params
+from agent.protocol.constants import CYCLE_S
 from agent.skills.walk import FORWARD, WalkConfig, _Steer
 
 
@@ -84,3 +85,15 @@ def test_a_chained_turn_keeps_its_plan_unless_the_target_moved_well_short_of_it(
     # the pose may not show the whole turn yet: a bearing beyond the plan's rest keeps the plan
     assert _after_one_turn_motion(-150.0, -170.0).turn_deg == rest
     assert _after_one_turn_motion(150.0, 10.0).motion == "stand"   # within the chain threshold: done
+
+
+def test_after_a_turn_the_steer_stands_then_settles_then_lets_the_walk_go():
+    """turn -> ``stand`` -> ``settle_after_turn_s`` of no motion -> None (the skill walks on). The settle cycles
+    no longer look up the completions of "no turn" (a controller stand-in without that key raised KeyError)."""
+    steer, played = _Steer(WalkConfig()), _Played()
+    steer.turn(played, 30.0)
+    played.completed["turn_left"] += 1
+    assert steer.turn_step(played).motion == "stand"
+    played.completed["stand"] += 1
+    settle = [steer.turn_step(played) for _ in range(round(WalkConfig().settle_after_turn_s / CYCLE_S) + 1)]
+    assert [r.motion for r in settle[:-1]] == [None] * (len(settle) - 1) and settle[-1] is None
