@@ -50,6 +50,11 @@ class SkillSequence(Skill):
             if skill is not None:
                 skill.reset()
 
+    @property
+    def current(self) -> Skill | None:
+        """The part being played (None: an idle part, or all done)."""
+        return self.parts[self._index][0] if self._index < len(self.parts) else None
+
     def step(self, world: WorldModel, motion: MotionController) -> MotionRequest:
         while self._index < len(self.parts):
             skill, cycles = self.parts[self._index]

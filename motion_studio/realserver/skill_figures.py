@@ -67,7 +67,8 @@ def figures(run: Run, case: Case) -> dict[str, float | str]:
             out["ball direction [deg]"] = wrap_deg(math.degrees(math.atan2(dy, dx)) - first.heading_deg)
     if case.dribble is not None and case.ball_m is not None:
         direction_deg, way_m = case.dribble
-        dribble = measure(run.truths[STAND_CYCLES:], case.ball_m, direction_deg, way_m)
+        dribble = measure(run.truths[STAND_CYCLES:], case.ball_m, direction_deg, way_m,
+                          run.modes[STAND_CYCLES:] if run.modes else None)
         out["dribble ball way [m]"] = way_m
         out["dribble time [s]"] = math.nan if dribble["time_s"] is None else dribble["time_s"]
         out["dribble speed [m/s]"] = math.nan if dribble["speed_m_s"] is None else dribble["speed_m_s"]
@@ -75,6 +76,8 @@ def figures(run: Run, case: Case) -> dict[str, float | str]:
         for label, key in (("p95", "distance_p95_m"), ("max", "distance_max_m")):
             out[f"ball from torso {label} [m]"] = math.nan if dribble[key] is None else dribble[key]
         out["dribble fell"] = "yes" if dribble["fell"] else "no"
+        for group, seconds in dribble.get("time_by_mode_s", {}).items():
+            out[f"dribble {group} [s]"] = seconds
     if case.fall:
         # stood up: the torso centre above 0.30 m for 1 s after the fall (measures.stood_index; an upright
         # tilt alone is no stand: a robot sitting upright keeps its torso below 0.30 m)

@@ -19,7 +19,7 @@ from agent.protocol.errors import ProtocolError
 from agent.protocol.framing import read_frame, write_frame
 from agent.skills.behavior import SkillBehavior
 from motion_studio.realserver.cases import (CONNECT_CYCLES, CYCLE_S, FALL_SCRIPT_CYCLES, TEAM, UNUM, Case,
-                                            MotionSource, behavior, fall_steps, trainer_commands)
+                                            MotionSource, SkillSequence, behavior, fall_steps, trainer_commands)
 from motion_studio.realserver.errors import RealServerError
 from motion_studio.realserver.process import AGENT_PORT, MonitorLink, RealServer, connect
 from motion_studio.scenarios import Truth
@@ -48,6 +48,18 @@ class Run:
     blow_ups: int = 0
     """Our simulator's blow-up guard firing (sim.world: a hinge far past its stop or spinning; the robot is
     put back to the cycle's start at rest)."""
+    modes: list[str | None] = field(default_factory=list)
+    """The playing skill's ``mode`` per skill-phase cycle (a dribble's push, turn, ...; None for a skill without
+    one): where a skill's time goes, on both servers. Empty for an open-loop replay."""
+
+
+def record_mode(run: Run, inner: SkillBehavior) -> None:
+    """Append the mode of the skill ``inner`` plays now (inside a case's ``SkillSequence``) to ``run.modes``."""
+    skill = inner.skill
+    if isinstance(skill, SkillSequence):
+        skill = skill.current
+    mode = getattr(skill, "mode", None)
+    run.modes.append(mode if isinstance(mode, str) else None)
 
 
 def record_completions(run: Run, inner: SkillBehavior, done: dict[str, int], index: int) -> None:
@@ -103,6 +115,7 @@ def run_sim(case: Case, motions: MotionSource) -> Run:
             fall_behavior.start_cycle = fall_behavior.cycle + 1
         if index >= skill_cycle:
             record_completions(run, inner, done, index - skill_cycle)
+            record_mode(run, inner)
             rotation = world.torso_rotation(key)
             poses = next(bodies for _, unum, _, bodies in world.robot_body_poses() if unum == UNUM)
             run.self_collisions += len(colliding_pairs(case.robot_type, poses, SELF_COLLISION_TOLERANCE_M))
@@ -219,6 +232,7 @@ def run_real(case: Case, motions: MotionSource, scripts: Path, workdir: Path,
             game_times.append(_game_time_s(payload))
             if i >= skill_cycle:
                 record_completions(run, inner, done, i - skill_cycle)
+                record_mode(run, inner)
             else:
                 done = dict(inner.motion.completed)
             send(i, reply)

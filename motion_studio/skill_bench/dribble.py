@@ -80,11 +80,39 @@ def ball_on_line(truth: Truth, ball_start: tuple[float, float], direction_deg: f
     return dx * math.cos(direction) + dy * math.sin(direction), -dx * math.sin(direction) + dy * math.cos(direction)
 
 
+#: What each ``Dribble.mode`` counts as in the time split (``time_by_mode``): pushing the ball, turn motions (and
+#: the walk's stop and the stance around them), the short walks and stops of the near-ball line-up, walking to the
+#: ball (the approach point, round other robots, side steps past an opponent), looking for it.
+MODE_GROUPS = {"push": "push", "turn": "turn", "approach": "approach", "avoid": "approach", "blocked": "approach",
+               "search": "search"}
+MODE_GROUP_ORDER = ("push", "approach", "turn", "near-ball", "search")
+
+
+def mode_group(mode: str | None) -> str | None:
+    """The group (``MODE_GROUP_ORDER``) of one cycle's ``Dribble.mode``; None for a cycle without a dribble."""
+    if mode is None or mode == "start":
+        return None
+    return "near-ball" if mode.startswith("near:") else MODE_GROUPS.get(mode, mode)
+
+
+def time_by_mode(modes: Sequence[str | None]) -> dict[str, float]:
+    """Seconds per mode group (``mode_group``) of a dribble's per-cycle modes, in ``MODE_GROUP_ORDER``; every group
+    listed (0 where absent). Why: the dribble's time on the real server went to turns and near-ball line-ups as
+    much as to pushing (10 m in 27-38 s, of which 14-17 s pushing), which its speed alone does not show."""
+    seconds = dict.fromkeys(MODE_GROUP_ORDER, 0.0)
+    for mode in modes:
+        group = mode_group(mode)
+        if group is not None:
+            seconds[group] = seconds.get(group, 0.0) + CYCLE_S
+    return {group: round(value, 2) for group, value in seconds.items()}
+
+
 def measure(truths: Sequence[Truth | None], ball_start: tuple[float, float], direction_deg: float,
-            way_m: float) -> dict:
+            way_m: float, modes: Sequence[str | None] | None = None) -> dict:
     """The dribble figures of a run's truths (one per cycle from the dribble's start; None = no truth that
-    cycle), measured until the ball has gone ``way_m`` along ``direction_deg`` from ``ball_start`` (or the end).
-    Shared by the benchmark and ``motion-studio real skills`` (the real server's truths)."""
+    cycle), measured until the ball has gone ``way_m`` along ``direction_deg`` from ``ball_start`` (or the end);
+    with ``modes`` (the dribble's ``mode`` per cycle, same indexing) also the time per mode group over that span
+    (``time_by_mode``). Shared by the benchmark and ``motion-studio real skills`` (the real server's truths)."""
     distances: list[float] = []
     fell = False
     reached_s = None
@@ -101,6 +129,7 @@ def measure(truths: Sequence[Truth | None], ball_start: tuple[float, float], dir
     if last is None:
         return {"way_m": way_m, "time_s": None, "speed_m_s": None, "keep_share": 0.0, "distance_p95_m": None,
                 "distance_max_m": None, "off_line_m": None, "fell": False}
+    split = {} if modes is None else {"time_by_mode_s": time_by_mode(modes[:index + 1])}
     off_line = ball_on_line(last, ball_start, direction_deg)[1]
     spread = np.asarray(distances)
     return {
@@ -112,6 +141,7 @@ def measure(truths: Sequence[Truth | None], ball_start: tuple[float, float], dir
         "distance_max_m": round(float(spread.max()), 3),
         "off_line_m": round(off_line, 3),
         "fell": fell,
+        **split,
     }
 
 
@@ -123,9 +153,12 @@ def dribble_run(scenario: Scenario, ball_start: tuple[float, float], direction_d
     direction = math.radians(direction_deg)
     along = (math.cos(direction), math.sin(direction))
     target = (ball_start[0] + target_m * along[0], ball_start[1] + target_m * along[1])
-    scenario.set_skill(Dribble(*target))
+    dribble = Dribble(*target)
+    scenario.set_skill(dribble)
+    modes: list[str | None] = []
 
     def finished(truth: Truth) -> bool:
+        modes.append(dribble.mode)   # the mode of the request this cycle's truth followed
         return truth.fallen or ball_on_line(truth, ball_start, direction_deg)[0] >= way_m
 
     truths = scenario.run(int(limit_s / CYCLE_S), stop=finished)
@@ -134,7 +167,7 @@ def dribble_run(scenario: Scenario, ball_start: tuple[float, float], direction_d
                       ("torso_x_m", lambda t: t.torso_m[0]), ("torso_y_m", lambda t: t.torso_m[1]),
                       ("distance_m", lambda t: math.dist(t.ball_m[:2], t.torso_m[:2]))):
         trace[key] = [round(pick(t), 3) for t in truths[::TRACE_EVERY]]
-    return {**measure(truths, ball_start, direction_deg, way_m), "trace": trace}
+    return {**measure(truths, ball_start, direction_deg, way_m, modes), "trace": trace}
 
 
 def passed(trial: dict) -> bool:
@@ -172,6 +205,8 @@ def _summary(trials: list[dict]) -> dict:
         "distance_max_m": round(max(t["distance_max_m"] for t in trials), 3),
         "falls": sum(t["fell"] for t in trials),
         "passed": sum(passed(t) for t in trials),
+        "time_by_mode_mean_s": {group: round(float(np.mean([t["time_by_mode_s"][group] for t in trials])), 2)
+                                for group in MODE_GROUP_ORDER} if all("time_by_mode_s" in t for t in trials) else {},
     }
 
 
@@ -213,8 +248,8 @@ def run(quick: bool = False, seed: int = 0, progress: Callable[[int, int], None]
 
 
 def plot(result: dict, out_dir: pathlib.Path) -> list[pathlib.Path]:
-    """``dribble_type<N>.png``: the ball's and the robot's paths of every trial (field frame), and the ball's
-    distance from the robot over time against the 0.5 m target."""
+    """``dribble_type<N>.png``: the ball's and the robot's paths of every trial (field frame), the ball's
+    distance from the robot over time against the 0.5 m target, and each trial's time per mode group."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -222,7 +257,7 @@ def plot(result: dict, out_dir: pathlib.Path) -> list[pathlib.Path]:
 
     out_dir = pathlib.Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
-    fig, (paths, keep) = plt.subplots(1, 2, figsize=(13, 5.5))
+    fig, (paths, keep, split) = plt.subplots(1, 3, figsize=(18, 5.5), gridspec_kw={"width_ratios": [1.2, 1.2, 0.8]})
     colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
     for i, (trace, trial) in enumerate(zip(result["traces"].values(), result["trials"])):
         color = colors[i % len(colors)]
@@ -241,7 +276,16 @@ def plot(result: dict, out_dir: pathlib.Path) -> list[pathlib.Path]:
     keep.set_title(f"straight {result['straight']['speed_mean_m_s']} m/s mean, "
                    f"turn {result['turn']['speed_mean_m_s']} m/s, falls {result['falls']}")
     keep.legend(loc="upper right")
-    for axis in (paths, keep):
+    bottoms = np.zeros(len(result["trials"]))
+    for group in MODE_GROUP_ORDER:
+        seconds = np.array([t.get("time_by_mode_s", {}).get(group, 0.0) for t in result["trials"]])
+        split.bar(range(len(seconds)), seconds, bottom=bottoms, label=group)
+        bottoms += seconds
+    split.set_xticks(range(len(result["trials"])), [t["kind"] for t in result["trials"]], rotation=30, fontsize=8)
+    split.set_ylabel("time until the ball's way was done [s]")
+    split.set_title("where the time goes (Dribble.mode)")
+    split.legend(fontsize=8)
+    for axis in (paths, keep, split):
         axis.grid(alpha=0.3)
     fig.tight_layout()
     path = out_dir / f"dribble_type{result['robot_type']}.png"
@@ -250,4 +294,5 @@ def plot(result: dict, out_dir: pathlib.Path) -> list[pathlib.Path]:
     return [path]
 
 
-__all__ = ["TARGETS", "dribble_run", "measure", "passed", "plot", "run"]
+__all__ = ["MODE_GROUP_ORDER", "TARGETS", "dribble_run", "measure", "mode_group", "passed", "plot", "run",
+           "time_by_mode"]

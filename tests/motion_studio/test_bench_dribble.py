@@ -14,7 +14,7 @@ from motion_studio.realserver.cases import CASES, STAND_CYCLES
 from motion_studio.realserver.skill_figures import figures
 from motion_studio.realserver.skill_runs import Run
 from motion_studio.scenarios import Truth
-from motion_studio.skill_bench.dribble import KEEP_M, measure, passed
+from motion_studio.skill_bench.dribble import MODE_GROUP_ORDER, KEEP_M, measure, passed, time_by_mode
 
 
 def _truth(t: float, torso_x: float, ball_x: float, ball_y: float = 0.0, up_z: float = 1.0) -> Truth:
@@ -58,6 +58,9 @@ def test_the_quick_dribble_benchmark_brings_the_ball_10_m_on_our_simulator(tmp_p
     assert figures_["straight"]["speed_mean_m_s"] > 0.3   # the issue asks 0.4; measured 0.47-0.53
     assert figures_["turn"]["reached"] == 1               # the ball brought round 90 deg, 4 m on the new line
     assert (tmp_path / "dribble_type0.png").stat().st_size > 10_000
+    for trial in figures_["trials"]:   # the time per mode covers the trial's time, cycle for cycle
+        assert sum(trial["time_by_mode_s"].values()) == pytest.approx(trial["time_s"], abs=0.03)
+    assert figures_["straight"]["time_by_mode_mean_s"]["push"] > 5.0
 
 
 def test_the_real_dribble_case_is_measured_like_the_benchmark_from_the_skill_start():
@@ -75,3 +78,28 @@ def test_the_real_dribble_case_is_measured_like_the_benchmark_from_the_skill_sta
     assert out[f"ball within {KEEP_M} m [share]"] == pytest.approx(1.0)
     assert out["dribble fell"] == "no"
     assert not math.isnan(out["ball from torso max [m]"])
+
+
+def test_time_by_mode_groups_the_dribble_modes_and_counts_only_cycles_with_a_dribble():
+    modes = [None] * 5 + ["start"] + ["push"] * 50 + ["avoid"] * 10 + ["approach"] * 10 + ["turn"] * 25 \
+        + ["near:walk_left"] * 20 + ["near:stop"] * 5 + ["blocked"] * 3 + ["search"] * 2
+    split = time_by_mode(modes)
+    assert list(split) == list(MODE_GROUP_ORDER)
+    assert split == {"push": 1.0, "approach": 0.46, "turn": 0.5, "near-ball": 0.5, "search": 0.04}
+
+
+def test_the_real_dribble_case_splits_its_time_by_the_skill_modes_it_recorded():
+    """The same split on both servers: ``Run.modes`` (the dribble's mode per skill-phase cycle, the stand before
+    it included) beside the truths; the split covers the way only (here 10 s, then 2 s more of pushing)."""
+    case = CASES["dribble"]
+    truths: list[Truth | None] = [_truth(i * 0.02, -8.0, -7.8) for i in range(STAND_CYCLES)]
+    for i in range(1, 600):
+        ball = -7.8 + i * 0.02
+        truths.append(_truth(STAND_CYCLES * 0.02 + i * 0.02, ball - 0.4, ball))
+    modes = [None] * STAND_CYCLES + ["turn"] * 100 + ["near:walk_right"] * 100 + ["push"] * 399
+    out = figures(Run("real", truths, modes=modes), case)
+    assert out["dribble time [s]"] == pytest.approx(10.0, abs=0.03)
+    assert out["dribble turn [s]"] == pytest.approx(2.0)
+    assert out["dribble near-ball [s]"] == pytest.approx(2.0)
+    assert out["dribble push [s]"] == pytest.approx(6.0, abs=0.03)
+    assert "dribble push [s]" not in figures(Run("real", truths), case)   # an open-loop replay has no modes
