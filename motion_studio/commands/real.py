@@ -64,11 +64,20 @@ def skills(
              "'worktree' = the files as they are now")] = "HEAD",
     robot_type: Annotated[int, typer.Option("--type", min=0, max=4, help="robot type (0-4) that plays every case, "
                                             "with its own motions")] = 0,
+    dribble: Annotated[Optional[list[str]], typer.Option(
+        "--dribble", metavar="NAME=VALUE",
+        help="a DribbleConfig field for the dribble cases, on both servers (repeatable), e.g. "
+             "--dribble near_heading_deg=30 --dribble free_line_deg=40")] = None,
     real_server_dir: ServerDir = None,
 ) -> None:
     """Each skill case on the real server and on ours, measured by ground truth; a table per case."""
-    from motion_studio.realserver.cases import CASES, motion_source
+    from motion_studio.realserver.cases import CASES, motion_source, parse_dribble_settings
     from motion_studio.realserver.skill_check import check_skills
+
+    try:
+        dribble_config = parse_dribble_settings(dribble or [])
+    except ValueError as error:
+        _fail("skills", f"--dribble {error}")
 
     if list_cases:
         typer.echo("\n".join(f"{name}: {case.cycles} cycles" for name, case in CASES.items()))
@@ -82,8 +91,11 @@ def skills(
     except subprocess.CalledProcessError:
         _fail("skills", f"unknown git revision {motions!r} (--motions)")
     typer.echo(f"motions: {source.revision}")
+    if dribble_config:
+        typer.echo(f"dribble settings: {', '.join(f'{k}={v:g}' for k, v in dribble_config.items())}")
     results = check_skills(cases or list(CASES), source, scripts, out, fixture, replay_sim,
-                           report=lambda text: typer.echo(text), robot_type=robot_type)
+                           report=lambda text: typer.echo(text), robot_type=robot_type,
+                           dribble_config=dribble_config)
     if json_path is not None:
         json_path.write_text(json.dumps(results, indent=1))
 

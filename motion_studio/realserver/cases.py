@@ -10,15 +10,15 @@ velocities) for FALL_SCRIPT_CYCLES cycles, then the skill.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
-from dataclasses import dataclass, replace
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, fields, replace
 from pathlib import Path
 
 from agent.motion import MotionController, MotionLibrary, MotionRequest, default_library, load_dynamic_params
 from agent.protocol.effectors import Action, JointVelocity
 from agent.skills.base import PlayMotion, Skill
 from agent.skills.behavior import SkillBehavior
-from agent.skills.dribble import Dribble
+from agent.skills.dribble import Dribble, DribbleConfig
 from agent.skills.standup import StandUp
 from agent.skills.turn import TurnBy
 from agent.world_model import WorldModel
@@ -160,6 +160,20 @@ for _distance in CONTROLLED_KICK_M:
     CASES[f"kick_{_distance}m"] = _controlled_kick(_distance)
 
 
+@dataclass(frozen=True)
+class DribbleSkill:
+    """A dribble case's skill: the stand (looking down at the ball) for STAND_CYCLES, then ``Dribble`` toward
+    ``target_m`` with ``config`` (``with_dribble_config`` changes it, ``motion-studio real skills --dribble``)."""
+
+    target_m: tuple[float, float]
+    config: DribbleConfig = DribbleConfig()
+
+    def __call__(self) -> Skill:
+        look_down = dribble_bench.LOOK_DOWN_DEG
+        return SkillSequence((PlayMotion("stand", repeat=True, head_deg=look_down), STAND_CYCLES),
+                             (Dribble(*self.target_m, self.config), None))
+
+
 def _dribble(name: str, position_m: tuple[float, float], direction_deg: float, way_m: float,
              target_m: float) -> Case:
     """The benchmark's dribble (``motion_studio.skill_bench.dribble``): the robot facing +x in the walk stance,
@@ -168,10 +182,37 @@ def _dribble(name: str, position_m: tuple[float, float], direction_deg: float, w
     direction = math.radians(direction_deg)
     target = (ball[0] + target_m * math.cos(direction), ball[1] + target_m * math.sin(direction))
     cycles = STAND_CYCLES + int(dribble_bench.LIMIT_S / CYCLE_S)
-    look_down = dribble_bench.LOOK_DOWN_DEG
-    return Case(name, lambda: SkillSequence((PlayMotion("stand", repeat=True, head_deg=look_down), STAND_CYCLES),
-                                            (Dribble(*target), None)), cycles,
-                position_m=position_m, ball_m=ball, dribble=(direction_deg, way_m))
+    return Case(name, DribbleSkill(target), cycles, position_m=position_m, ball_m=ball, dribble=(direction_deg, way_m))
+
+
+def parse_dribble_settings(settings: list[str]) -> dict[str, float]:
+    """``NAME=VALUE`` words (``DribbleConfig`` fields that hold one number) as a dict of overrides.
+
+    Raises:
+        ValueError: a word without ``=``, an unknown or non-numeric field, or a value that is no number (the
+            message names the word and lists the fields).
+    """
+    numeric = sorted(f.name for f in fields(DribbleConfig) if isinstance(getattr(DribbleConfig(), f.name), float))
+    overrides: dict[str, float] = {}
+    for word in settings:
+        name, sep, value = word.partition("=")
+        name = name.strip()
+        if not sep or name not in numeric:
+            raise ValueError(f"{word!r}: expected NAME=VALUE with NAME one of {', '.join(numeric)}")
+        try:
+            overrides[name] = float(value)
+        except ValueError:
+            raise ValueError(f"{word!r}: {value.strip()!r} is not a number") from None
+    return overrides
+
+
+def with_dribble_config(case: Case, overrides: Mapping[str, float]) -> Case:
+    """``case`` with its dribble's ``DribbleConfig`` fields changed (other cases as they are): to try a dribble
+    setting on both servers before it goes into the code."""
+    if not overrides or not isinstance(case.make_skill, DribbleSkill):
+        return case
+    skill = case.make_skill
+    return replace(case, make_skill=replace(skill, config=replace(skill.config, **overrides)))
 
 
 CASES["dribble"] = _dribble("dribble", (-8.0, 0.0), 0.0, dribble_bench.STRAIGHT_M, dribble_bench.STRAIGHT_TARGET_M)

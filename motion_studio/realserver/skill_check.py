@@ -11,11 +11,11 @@ other people's unfinished files do not leak in. With a fixture folder each real 
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import replace
 from pathlib import Path
 
-from motion_studio.realserver.cases import CASES, MotionSource
+from motion_studio.realserver.cases import CASES, MotionSource, with_dribble_config
 from motion_studio.realserver.fixtures import fixture_path, write_fixture
 from motion_studio.realserver.skill_figures import figures, table
 from motion_studio.realserver.skill_runs import run_real, run_sim
@@ -25,7 +25,7 @@ TOOL = "motion-studio real skills"
 
 def check_skills(names: list[str], motions: MotionSource, scripts: Path, out: Path, fixture_dir: Path | None = None,
                  replay_sim: bool = False, report: Callable[[str], None] = lambda line: None,
-                 robot_type: int = 0) -> dict:
+                 robot_type: int = 0, dribble_config: Mapping[str, float] | None = None) -> dict:
     """Run ``names`` (cases.CASES) on both servers (this process inside netns.sh's namespace).
 
     Args:
@@ -36,15 +36,17 @@ def check_skills(names: list[str], motions: MotionSource, scripts: Path, out: Pa
             commands on both: physics alone compared).
         report: called with each case's table (or why it was skipped).
         robot_type: the robot type (0-4) that plays every case, with its own motions.
+        dribble_config: ``DribbleConfig`` fields for the dribble cases (``cases.with_dribble_config``).
 
     Returns:
-        {"motions": revision, "robot_type": N, case: {"real": figures, "sim": figures}} (JSON-ready).
+        {"motions": revision, "robot_type": N, "dribble_config": overrides, case: {"real": figures, "sim":
+        figures}} (JSON-ready).
     """
     out.mkdir(parents=True, exist_ok=True)
-    results: dict = {"motions": motions.revision, "robot_type": robot_type}
+    results: dict = {"motions": motions.revision, "robot_type": robot_type, "dribble_config": dict(dribble_config or {})}
     available = motions.library(robot_type)
     for name in names:
-        case = replace(CASES[name], robot_type=robot_type)
+        case = with_dribble_config(replace(CASES[name], robot_type=robot_type), dribble_config or {})
         if case.motion is not None and case.motion not in available:
             if case.motion in motions.library(robot_type, include_withheld=True):
                 report(f"{name}: skipped (robot type {robot_type} does not play {case.motion!r}: motions/files/"
