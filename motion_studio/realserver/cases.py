@@ -200,9 +200,12 @@ def parse_dribble_settings(settings: list[str]) -> dict[str, float]:
         if not sep or name not in numeric:
             raise ValueError(f"{word!r}: expected NAME=VALUE with NAME one of {', '.join(numeric)}")
         try:
-            overrides[name] = float(value)
+            number = float(value)
         except ValueError:
-            raise ValueError(f"{word!r}: {value.strip()!r} is not a number") from None
+            number = math.nan
+        if not math.isfinite(number):
+            raise ValueError(f"{word!r}: {value.strip()!r} is not a number")
+        overrides[name] = number
     return overrides
 
 

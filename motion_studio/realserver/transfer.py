@@ -22,7 +22,7 @@ from pathlib import Path
 
 from agent.skills.base import PlayMotion
 from motion_studio.realserver.cases import (CASES, CYCLE_S, FALL_SCRIPT_CYCLES, SETTLE_CYCLES, Case, MotionSource,
-                                            SkillSequence, motion_source)
+                                            SkillSequence, motion_source, with_dribble_config)
 from motion_studio.realserver.errors import FixtureError, RealServerError
 from motion_studio.realserver.fixtures import Fixture, fixture_path, read_fixture, write_fixture
 from motion_studio.realserver.measures import (ball_travel_m, count_falls, displacement_m, first_fall, known,
@@ -132,6 +132,7 @@ def case_of(fixture: Fixture) -> Case:
     base = {case.name: case for case in (*CASES.values(), WALK_20M)}.get(str(meta["case"]))
     if base is None:
         raise FixtureError(fixture.path, 1, f"unknown case {meta['case']!r} in the meta line")
+    base = with_dribble_config(base, meta.get("dribble_config", {}))   # a dribble recorded with --dribble settings
     return replace(base, settle_cycles=fixture.skill_cycle - int(meta["move_cycle"]), start=int(meta.get("start", 0)))
 
 

@@ -21,6 +21,7 @@ def test_settings_parse_to_numeric_dribble_fields():
 
 @pytest.mark.parametrize("word, words", [("near_heading_deg", "NAME=VALUE"), ("near_heading=30", "near_heading_deg"),
                                          ("near_heading_deg=wide", "'wide' is not a number"),
+                                         ("near_heading_deg=nan", "'nan' is not a number"),
                                          ("push_aim_left_m=0.1", "NAME=VALUE")])
 def test_a_bad_setting_names_the_word_and_the_fields(word, words):
     with pytest.raises(ValueError) as caught:
@@ -45,3 +46,18 @@ def test_a_bad_setting_is_one_line_before_any_server_starts():
     result = CliRunner().invoke(app, ["real", "skills", "dribble", "--dribble", "near_heading=30"])
     assert result.exit_code != 0
     assert "near_heading" in result.output and "Traceback" not in result.output
+
+
+def test_a_fixture_recorded_with_a_setting_replays_as_that_case():
+    """``motion-studio transfer`` rebuilds a fixture's case from its meta line: with the recorded dribble settings
+    (``case_of`` reads the fixture's meta line and skill cycle only)."""
+    from types import SimpleNamespace
+
+    from motion_studio.realserver.transfer import case_of
+
+    case = with_dribble_config(CASES["dribble"], {"near_ball_m": 0.8})
+    meta = meta_line(case, MotionSource(), "ours", "test")
+    rebuilt = case_of(SimpleNamespace(meta=meta, skill_cycle=meta["skill_cycle"], path="f.jsonl.gz"))
+    assert rebuilt.make_skill.config == DribbleConfig(near_ball_m=0.8)
+    assert case_of(SimpleNamespace(meta=meta_line(CASES["dribble"], MotionSource(), "ours", "test"),
+                                   skill_cycle=meta["skill_cycle"], path="f")).make_skill.config == DribbleConfig()
