@@ -324,9 +324,9 @@ def run_real(setup: MatchSetup, kick_off: str, scripts: Path, out: Path) -> Play
         stop.set()
     finally:
         stop.set()
-        server.stop()
         if monitor is not None:
-            monitor.close()
+            monitor.close()   # before the server ends: its end is no monitor failure
+        server.stop()
         for thread in threads:
             thread.join(15)
         logging.getLogger().removeHandler(counter)
@@ -392,9 +392,9 @@ def run_real_cli(setup: MatchSetup, kick_off: str, scripts: Path, out: Path) -> 
             except subprocess.TimeoutExpired:
                 process.kill()
                 process.wait(5)
-        server.stop()
         if monitor is not None:
-            monitor.close()
+            monitor.close()   # before the server ends: its end is no monitor failure
+        server.stop()
     log_path = out / "real_monitor.log"
     log_path.write_bytes(b"\n".join(monitor.frames) + b"\n")
     if monitor.failure:
