@@ -192,7 +192,8 @@ def parse_dribble_settings(settings: list[str]) -> dict[str, float]:
         ValueError: a word without ``=``, an unknown or non-numeric field, or a value that is no number (the
             message names the word and lists the fields).
     """
-    numeric = sorted(f.name for f in fields(DribbleConfig) if isinstance(getattr(DribbleConfig(), f.name), float))
+    default = DribbleConfig()
+    numeric = sorted(f.name for f in fields(DribbleConfig) if isinstance(getattr(default, f.name), float))
     overrides: dict[str, float] = {}
     for word in settings:
         name, sep, value = word.partition("=")
@@ -207,6 +208,13 @@ def parse_dribble_settings(settings: list[str]) -> dict[str, float]:
             raise ValueError(f"{word!r}: {value.strip()!r} is not a number")
         overrides[name] = number
     return overrides
+
+
+def changed_dribble_settings(config: DribbleConfig) -> dict[str, object]:
+    """The fields of ``config`` that differ from the shipped ``DribbleConfig`` (what ``--dribble`` changed)."""
+    default = DribbleConfig()
+    return {f.name: getattr(config, f.name) for f in fields(DribbleConfig)
+            if getattr(config, f.name) != getattr(default, f.name)}
 
 
 def with_dribble_config(case: Case, overrides: Mapping[str, float]) -> Case:

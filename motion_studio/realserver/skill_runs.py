@@ -11,17 +11,16 @@ from __future__ import annotations
 import math
 import re
 import time
-from dataclasses import dataclass, field, fields
+from dataclasses import dataclass, field
 from pathlib import Path
 
 from agent.agent import Agent, AgentConfig
 from agent.protocol.errors import ProtocolError
 from agent.protocol.framing import read_frame, write_frame
 from agent.skills.behavior import SkillBehavior
-from agent.skills.dribble import DribbleConfig
 from motion_studio.realserver.cases import (CONNECT_CYCLES, CYCLE_S, FALL_SCRIPT_CYCLES, TEAM, UNUM, Case,
-                                            DribbleSkill, MotionSource, SkillSequence, behavior, fall_steps,
-                                            trainer_commands)
+                                            DribbleSkill, MotionSource, SkillSequence, behavior,
+                                            changed_dribble_settings, fall_steps, trainer_commands)
 from motion_studio.realserver.errors import RealServerError
 from motion_studio.realserver.process import AGENT_PORT, MonitorLink, RealServer, connect
 from motion_studio.scenarios import Truth
@@ -170,10 +169,9 @@ def meta_line(case: Case, motions: MotionSource, commands: str, tool: str) -> di
             "tool": tool}
     if case.robot_type:
         meta["robot_type"] = case.robot_type
-    if isinstance(case.make_skill, DribbleSkill) and case.make_skill.config != DribbleConfig():
-        default = DribbleConfig()   # the fields changed by --dribble, so the trace says which dribble it shows
-        meta["dribble_config"] = {f.name: getattr(case.make_skill.config, f.name) for f in fields(DribbleConfig)
-                                  if getattr(case.make_skill.config, f.name) != getattr(default, f.name)}
+    changed = changed_dribble_settings(case.make_skill.config) if isinstance(case.make_skill, DribbleSkill) else {}
+    if changed:   # the fields changed by --dribble, so the trace says which dribble it shows
+        meta["dribble_config"] = changed
     if case.start:
         meta["start"] = case.start
         meta["fall_script"] = {str(cycle): step for cycle, step in fall_steps(case).items()}
