@@ -119,6 +119,13 @@ sessions), benchmarks/bench_sim.py.
   (``motion-studio real skills dribble``, type 0, 10 m) the real dribble takes 28-46 s in 5 runs, ours 16-17.5 s:
   the real ball stays near the feet (within 0.5 m of the torso 44-58 % of the time, ours 21-33 %) and drifts out
   of the walking line, so the real robot lines up again more often; ours rolls ahead and is walked after.
+  Why it drifts (measured 2026-11-27, the real closed-loop dribble's commands replayed here, fixture
+  real_0.7.3_skill_dribble_push): the feet reach the ball as on the real server (torsos within 6 mm up to the
+  first touch), the landing left foot grazes it first on both, but the real ball then stays put (pressed between
+  a planted foot and the ground, SimSpark's unbounded friction holds it) where ours rolls on 0.3 m/s to the right;
+  so the right foot meets the real ball with its inner front corner, 14 deg left, and ours square, 6 deg right.
+  No single ball friction, solref or restitution turns this touch without turning the simcmds touch with it
+  (strict xfail in tests/sim/test_real_skill_traces.py).
 * **Body-part friction, fitted on the real lying-on-back stand-up (2026-11-26, issue 12).** SimSpark's robot
   contacts slip in proportion to their tangential force (force-dependent slip 5e-3 m/s per N, μ = ∞), so a body part
   pushed hard along the ground slides while the feet of a walk, whose tangential forces stay small, hold. Lying on
