@@ -18,7 +18,7 @@ from agent.errors import MessageError
 from agent.localization import DEFAULT_LOCALIZER, Localizer, make_localizer
 from agent.protocol.perceptors import Sense
 from agent.world import mat3
-from agent.world.field import FIELD_LINES, LANDMARKS
+from agent.world.field import FIELD_LINES, LANDMARKS, goal_kick_drop_m
 from agent.world.frames import Pose2D, TeamFrame, wrap_angle_rad
 from agent.world.ball_track import BallTrack
 from agent.world.objects import TeammateReport, Tracked
@@ -27,7 +27,7 @@ from agent.world.state import BodyState, GameInfo
 from agent.world.vision import VisionFrame, vision_frame
 from kinematics.fk import NaoKinematics
 from kinematics.spec import robot_spec
-from agent.protocol.constants import CYCLE_S
+from agent.protocol.constants import CYCLE_S, DROP_BALL_TIME_S
 
 logger = logging.getLogger(__name__)
 
@@ -124,10 +124,13 @@ class WorldModel:
             return
         game.game_time_s = gs.game_time_s
         if gs.play_mode != game.play_mode:
+            ended, lasted_s = game.play_mode, game.server_time_s - game.play_mode_since_s
             if game.play_mode != "unknown":
                 game.play_mode_since_s = game.server_time_s
                 game.play_mode_cycles = 0
             game.play_mode = gs.play_mode
+            if gs.play_mode == "PlayOn" and ended.startswith("goal_kick_") and lasted_s >= DROP_BALL_TIME_S - CYCLE_S:
+                self._ball_dropped(goal_kick_drop_m(ended.removeprefix("goal_kick_")))
         if gs.score_left is not None:
             game.score_left, game.score_right = gs.score_left, gs.score_right or 0
         if gs.unum is not None:
@@ -138,6 +141,17 @@ class WorldModel:
             self.localizer = self._new_localizer()  # landmark positions change frame
             self.ball, self.teammates, self.opponents = None, {}, {}
             self.ball_track.clear()
+
+    def _ball_dropped(self, world_m: tuple[float, float]) -> None:
+        """The referee dropped the ball at ``world_m`` (world frame) [m]: believe it there at once. The drop
+        after an untaken goal kick moves the ball 3 m aside (``goal_kick_drop_m``), usually out of the camera's
+        view, and the last sighting then kept the players walking to the empty goal-kick spot for 4-5 s (real
+        server, 3 v 3 against robots that only stand)."""
+        x, y = self.frame.point_from_world(*world_m)
+        pose = self.localizer.pose
+        forward, left = pose.to_ego(x, y) if pose is not None else (None, None)
+        self.ball = Tracked(forward, left, x, y, self.game.server_time_s, source="referee")
+        self.ball_track.clear()
 
     def _update_body(self, sense: Sense) -> None:
         body = self.body

@@ -31,6 +31,9 @@ BALL_RADIUS_M = 0.042
 BALL_MASS_KG = 0.026
 #: Radius of the cylinder the referee treats a player as (crowding, set-piece clearance) [m].
 AGENT_RADIUS_M = 0.4
+#: A kick-off, kick-in, free kick, goal kick or corner kick nobody takes within this ends in a drop ball [s]
+#: (REFERENCE §4.3; the server's DropBallTime).
+DROP_BALL_TIME_S = 15.0
 
 #: Vision landmarks -> (x, y, z) [m], in the order the server lists them in ``See`` (goal posts seen at
 #: their top). Measured order: G1L G2L G2R G1R, then the flags (tests/sim/test_vision.py, recorded samples).

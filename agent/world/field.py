@@ -21,9 +21,19 @@ LANDMARKS: dict[str, tuple[float, float, float]] = {
 
 __all__ = ["BALL_RADIUS_M", "CENTRE_CIRCLE_CHORDS", "CENTRE_CIRCLE_RADIUS_M", "FIELD_LENGTH_M", "FIELD_LINES",
            "FIELD_WIDTH_M", "GOAL_HALF_WIDTH_M", "GOAL_HEIGHT_M", "HALF_LENGTH_M", "HALF_WIDTH_M", "LANDMARKS",
-           "PENALTY_AREA_HALF_WIDTH_M", "PENALTY_AREA_X_M", "Segment"]
+           "PENALTY_AREA_HALF_WIDTH_M", "PENALTY_AREA_X_M", "Segment", "goal_kick_drop_m"]
 
 Segment = tuple[tuple[float, float], tuple[float, float]]
+
+
+def goal_kick_drop_m(kicking_side: str) -> tuple[float, float]:
+    """Where the ball of ``kicking_side``'s goal kick (``left`` or ``right``) comes back into play when nobody
+    takes it (world frame) [m]: after ``DROP_BALL_TIME_S`` the referee drops it, and a ball inside a penalty
+    area moves to the area's front corner on its side of the long axis (the server's SoccerRuleAspect::DropBall;
+    REFERENCE §4.3's drop ball leaves the move out). A goal kick's ball lies on the axis, where y = 0 counts as
+    the positive side, so it is always the corner at y = +3 m. Measured on the real server (3 v 3 against robots
+    that only stand, 2026-11-27): 4 goal kicks in 6 matches, each ball back at (13.2, 3.0)."""
+    return (PENALTY_AREA_X_M if kicking_side == "right" else -PENALTY_AREA_X_M), PENALTY_AREA_HALF_WIDTH_M
 
 
 def _field_lines() -> tuple[Segment, ...]:

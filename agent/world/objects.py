@@ -26,7 +26,7 @@ class Tracked:
     seen_s: float
     """Server time of the sighting or report [s]."""
     source: str = "vision"
-    """``vision`` or ``say`` (a teammate's message)."""
+    """``vision``, ``say`` (a teammate's message) or ``referee`` (where a rule put the ball, not seen yet)."""
 
     def age_s(self, now_s: float) -> float:
         """Seconds since the sighting."""

@@ -10,8 +10,8 @@ import dataclasses
 import enum
 from dataclasses import dataclass
 from agent.protocol.constants import (AGENT_RADIUS_M, BALL_MASS_KG, BALL_RADIUS_M, CENTRE_CIRCLE_RADIUS_M, CYCLE_S,
-                                      FIELD_LENGTH_M, FIELD_WIDTH_M, GOAL_DEPTH_M, GOAL_HEIGHT_M, GOAL_WIDTH_M,
-                                      PENALTY_DEPTH_M)
+                                      DROP_BALL_TIME_S, FIELD_LENGTH_M, FIELD_WIDTH_M, GOAL_DEPTH_M, GOAL_HEIGHT_M,
+                                      GOAL_WIDTH_M, PENALTY_DEPTH_M)
 
 # REFERENCE §4.2: the index is what monitors use.
 PLAY_MODES: tuple[str, ...] = (
@@ -93,7 +93,7 @@ class RefereeConfig:
     half_time_s: float = 300.0
     goal_pause_time_s: float = 3.0
     kick_in_pause_time_s: float = 1.0
-    drop_ball_time_s: float = 15.0
+    drop_ball_time_s: float = DROP_BALL_TIME_S
     wait_before_kick_off_s: float = 30.0
     foul_hold_time_s: float = 0.5
 

@@ -8,7 +8,7 @@ import math
 import pytest
 
 from agent.team.attack import AIM_YS_M, BEYOND_LINE_M, CLEAR_M, GOAL_LINE_X_M, goal_target
-from agent.team.soccer_behavior import RESTART_BEHIND_M, SET_PIECE_CLEARANCE_M, restart_spot
+from agent.team.soccer_behavior import RESTART_BEHIND_M, SET_PIECE_CLEARANCE_M, drop_ready_spot, restart_spot
 
 KEEPER = (14.86, 0.0)  # the seed's goalkeeper beam spot, mirrored into our team frame
 
@@ -111,3 +111,17 @@ def test_set_pieces_play_the_long_kick_only_in_its_window(beyond_m, left_m, insi
     short or 3 cm beyond (motions/params/kick.toml [kick_strong])."""
     from agent.team.set_pieces import long_kick_window
     assert long_kick_window((SPOT[0] + beyond_m, SPOT[1] + left_m), *SPOT) is inside
+
+
+@pytest.mark.parametrize("drop", [(13.2, 3.0), (13.2, -3.0)])
+def test_the_player_waiting_for_a_goal_kick_s_drop_stands_behind_it_on_its_push_line(drop):
+    """The drop ball of an untaken goal kick comes back at the penalty area's corner (agent.world.field): the next
+    on-ball player waits there, behind it on the line toward its aim, outside the area the referee clears."""
+    opponents = [KEEPER, (12.56, 0.5)]   # keeper and a defender of the seed's formation (robots that only stand)
+    x, y = drop_ready_spot(drop, opponents)
+    aim = goal_target(drop, opponents)
+    assert math.hypot(x - drop[0], y - drop[1]) == pytest.approx(RESTART_BEHIND_M)
+    assert RESTART_BEHIND_M >= SET_PIECE_CLEARANCE_M   # the drop clears 2 m around the ball
+    to_aim = math.atan2(aim[1] - drop[1], aim[0] - drop[0])
+    assert math.atan2(drop[1] - y, drop[0] - x) == pytest.approx(to_aim)
+    assert x < 13.2 or abs(y) > 3.0   # outside the penalty area the referee keeps clear during the goal kick

@@ -193,3 +193,45 @@ def test_real_server_sample_right_team_sees_in_its_own_frame():
     assert world.x_m == pytest.approx(2.5, abs=0.1)
     assert abs(math.degrees(wrap_angle_rad(world.heading_rad - math.pi))) < 11.0
     assert model.opponents[1].position[0] == pytest.approx(2.5, abs=0.15)  # CapL at world -2.5
+
+
+def _goal_kick_then(model: WorldModel, kicker: str, mode_s: float, side: str, start_s: float = 30.0) -> None:
+    """``kicker``'s goal kick for ``mode_s`` seconds of server time, then PlayOn (no ball seen after the kick)."""
+    world_x, world_y = (6.0, -2.5) if side == "left" else (-6.0, 2.5)
+    heading = math.radians(20.0 if side == "left" else 200.0)
+    rng = random.Random(3)
+    steps = round(mode_s / 0.02)
+    for i in range(steps + 1):
+        now = start_s + 0.02 * i
+        seen = synth.see(world_x, world_y, heading, ball=(14.0 if kicker == "right" else -14.0, 0.0), rng=rng) \
+            if i == 0 else None
+        model.update(parse_sense(synth.sense_bytes(now, see_value=seen, play_mode=f"goal_kick_{kicker}")))
+    model.update(parse_sense(synth.sense_bytes(start_s + 0.02 * (steps + 1), play_mode="PlayOn")))
+
+
+@pytest.mark.parametrize("side, expected", [("left", (13.2, 3.0)), ("right", (13.2, -3.0))])
+def test_an_untaken_opponent_goal_kick_puts_the_ball_at_the_penalty_area_corner(side, expected):
+    # The server moves a dropped ball out of a penalty area to the area's corner at y = +3 m (world frame; the
+    # goal kick's ball lies on y = 0): (13.2, 3.0) in the left team's frame, (13.2, -3.0) in the right team's.
+    model = _model_at(6.0 if side == "left" else -6.0, -2.5 if side == "left" else 2.5,
+                      math.radians(20.0 if side == "left" else 200.0), side=side)
+    _goal_kick_then(model, "right" if side == "left" else "left", 15.0, side)
+    ball = model.ball
+    assert ball is not None and ball.source == "referee"
+    assert ball.position == pytest.approx(expected)
+    assert ball.age_s(model.now_s) == pytest.approx(0.0)
+    assert (ball.forward_m, ball.left_m) == pytest.approx(model.pose.to_ego(*expected))
+
+
+def test_a_goal_kick_taken_before_the_drop_keeps_the_ball_where_it_was_seen():
+    model = _model_at(6.0, -2.5, math.radians(20.0))
+    _goal_kick_then(model, "right", 4.0, "left")   # the keeper kicked after 4 s: PlayOn by its touch
+    assert model.ball is not None and model.ball.source == "vision"
+    assert model.ball.position == pytest.approx((14.0, 0.0), abs=0.3)
+
+
+def test_the_goal_kick_drop_spot_is_the_front_corner_of_the_kicking_team_s_area_at_plus_three():
+    from agent.world.field import goal_kick_drop_m
+
+    assert goal_kick_drop_m("right") == pytest.approx((13.2, 3.0))
+    assert goal_kick_drop_m("left") == pytest.approx((-13.2, 3.0))
