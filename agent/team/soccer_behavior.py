@@ -36,7 +36,7 @@ from agent.skills.turn import TurnToFace
 from agent.skills.walk import STAND, WalkTo
 from agent.skills.walk_ball import WalkToBall
 from agent.team import roles
-from agent.team.attack import goal_target, seen_opponents, set_piece_target
+from agent.team.attack import goal_target, over_the_line, seen_opponents, set_piece_target
 from agent.team.set_pieces import (SET_PIECE_MAX_STEPS, TakerMemory, long_kick_window, own_set_piece,
                                     set_piece_move)
 from agent.world.field import goal_kick_drop_m
@@ -61,6 +61,11 @@ SET_PIECE_CLEARANCE_M = 2.2
 #: cost 10-11 s from the drop ball to the first push against robots that only stand: a turn, a walk round the
 #: ball, another turn, and both field players went for it (equal distances).
 RESTART_BEHIND_M = 2.3
+#: The player waiting for the drop ball of the opponents' untaken goal kick stands this far from the drop spot
+#: [m]: the drop moves every player whose footprint (0.4 m either side of its torso) reaches 2 m of the ball 2.5 m
+#: toward its own goal; at 2.3 m on the diagonal line from the penalty-area corner the real server moved ours
+#: from (11.7, 4.8) to (10.6, 4.7), off its line (3 v 3 against robots that only stand, 2026-11-27).
+DROP_READY_BEHIND_M = 2.8
 #: At the own kick-off the second attacker waits here [m] (team frame; on its beam spot's side, in the
 #: opponent half but wholly inside the centre circle, where the kick-off rule lets the kicking team stand,
 #: REFERENCE §4.4): the kick-off flies about 4 m straight ahead and the taker may not touch the ball again, so
@@ -103,6 +108,8 @@ class SoccerBehavior:
         self._key: Hashable = None
         self._target: tuple[float, float] | None = None
         self._second_side: float | None = None
+        self._aim_y: float | None = None
+        """The y of the goal-mouth point the dribble aims at (``attack.AIM_YS_M``), kept while its path is clear."""
         self._logged: tuple[Hashable, str | None] | None = None
 
     @property
@@ -199,8 +206,10 @@ class SoccerBehavior:
         dribbling before the next, cost about 2 s."""
         world = self._world
         skill = self.skills.skill
-        previous_y = skill.target[1] if self._key == ("dribble",) and isinstance(skill, Dribble) else None
-        target = goal_target(ball, seen_opponents(world), previous_y) if world is not None else (15.5, 0.0)
+        previous_y = self._aim_y if self._key == ("dribble",) and isinstance(skill, Dribble) else None
+        aim = goal_target(ball, seen_opponents(world), previous_y) if world is not None else (15.5, 0.0)
+        self._aim_y = aim[1]
+        target = over_the_line(ball, aim)
         if self._key == ("dribble",) and isinstance(skill, Dribble) and skill.target != target \
                 and not skill.pushing:
             skill.target = target  # a new aim point: keep the skill (and its steering state)
@@ -315,15 +324,15 @@ def goal_kick_drop(world: WorldModel) -> tuple[float, float] | None:
 
 def drop_ready_spot(drop: tuple[float, float], opponents: list[tuple[float, float]]) -> tuple[float, float]:
     """Where the next on-ball player waits for the ``drop`` of the opponents' untaken goal kick [m, team frame]:
-    ``RESTART_BEHIND_M`` behind the drop spot on the line it will push the ball along (toward
+    ``DROP_READY_BEHIND_M`` behind the drop spot on the line it will push the ball along (toward
     ``attack.goal_target`` from there), so it walks straight into the push when the ball reappears. Waiting
     behind the goal-kick spot on the axis instead, it reached the ball 17-20 s after the drop on our simulator
     (10 seeds: a turn, a walk round the defender in front of the goal, turns beside the ball) and 22-29 s on
     the real server (2 of 4 drops)."""
-    aim = goal_target(drop, opponents)
+    aim = over_the_line(drop, goal_target(drop, opponents))
     to_aim = math.atan2(aim[1] - drop[1], aim[0] - drop[0])
-    x = drop[0] - RESTART_BEHIND_M * math.cos(to_aim)
-    y = drop[1] - RESTART_BEHIND_M * math.sin(to_aim)
+    x = drop[0] - DROP_READY_BEHIND_M * math.cos(to_aim)
+    y = drop[1] - DROP_READY_BEHIND_M * math.sin(to_aim)
     return (max(-roles.FIELD_X_LIMIT_M, min(roles.FIELD_X_LIMIT_M, x)),
             max(-roles.FIELD_Y_LIMIT_M, min(roles.FIELD_Y_LIMIT_M, y)))
 

@@ -7,8 +7,9 @@ import math
 
 import pytest
 
-from agent.team.attack import AIM_YS_M, BEYOND_LINE_M, CLEAR_M, GOAL_LINE_X_M, goal_target
-from agent.team.soccer_behavior import RESTART_BEHIND_M, SET_PIECE_CLEARANCE_M, drop_ready_spot, restart_spot
+from agent.team.attack import AIM_YS_M, BEYOND_LINE_M, CLEAR_M, GOAL_LINE_X_M, goal_target, over_the_line
+from agent.team.soccer_behavior import (DROP_READY_BEHIND_M, RESTART_BEHIND_M, SET_PIECE_CLEARANCE_M, drop_ready_spot,
+                                        restart_spot)
 
 KEEPER = (14.86, 0.0)  # the seed's goalkeeper beam spot, mirrored into our team frame
 
@@ -119,9 +120,22 @@ def test_the_player_waiting_for_a_goal_kick_s_drop_stands_behind_it_on_its_push_
     on-ball player waits there, behind it on the line toward its aim, outside the area the referee clears."""
     opponents = [KEEPER, (12.56, 0.5)]   # keeper and a defender of the seed's formation (robots that only stand)
     x, y = drop_ready_spot(drop, opponents)
-    aim = goal_target(drop, opponents)
-    assert math.hypot(x - drop[0], y - drop[1]) == pytest.approx(RESTART_BEHIND_M)
-    assert RESTART_BEHIND_M >= SET_PIECE_CLEARANCE_M   # the drop clears 2 m around the ball
+    aim = over_the_line(drop, goal_target(drop, opponents))
+    # the drop moves players whose 0.4 m footprint reaches 2 m of the ball: the corner of it on any line
+    assert math.hypot(x - drop[0], y - drop[1]) == pytest.approx(DROP_READY_BEHIND_M)
+    assert DROP_READY_BEHIND_M > 2.0 + 0.4 * math.sqrt(2.0)
     to_aim = math.atan2(aim[1] - drop[1], aim[0] - drop[0])
     assert math.atan2(drop[1] - y, drop[0] - x) == pytest.approx(to_aim)
     assert x < 13.2 or abs(y) > 3.0   # outside the penalty area the referee keeps clear during the goal kick
+
+
+@pytest.mark.parametrize("ball", [(13.3, 1.9), (13.2, 3.0), (10.0, -4.0), (12.0, 0.0)])
+@pytest.mark.parametrize("aim_y", [0.0, 0.45, -0.65])
+def test_the_ball_is_played_over_the_line_where_the_aim_crosses_it(ball, aim_y):
+    """The dribble's target lies beyond the goal line on the line from the ball through the aim's goal-line
+    point: an oblique line crosses the line at the aim, not nearer the near post (from (13.3, 1.9) toward
+    (15.5, 0.45) it crossed at 0.78)."""
+    x, y = over_the_line(ball, (GOAL_LINE_X_M + BEYOND_LINE_M, aim_y))
+    assert math.hypot(x - GOAL_LINE_X_M, y - aim_y) == pytest.approx(BEYOND_LINE_M)
+    crossing = ball[1] + (y - ball[1]) * (GOAL_LINE_X_M - ball[0]) / (x - ball[0])
+    assert crossing == pytest.approx(aim_y)
