@@ -15,21 +15,11 @@ from __future__ import annotations
 import pytest
 
 from agent.protocol.constants import CYCLE_S
-from motion_studio.match_agents import SideAgents
-from sim.engine import SimEngine
-from sim.inprocess import InProcessHost
+from tests.standing_opponents import our_team_against_standing
 
 
 def test_after_an_untaken_goal_kick_the_team_scores_from_the_dropped_ball():
-    engine = SimEngine(seed=0)
-    host = InProcessHost(engine)
-    factory = SideAgents("ours", "standing")
-    keys = {}
-    for unum in range(1, 4):
-        for team in ("Left", "Right"):
-            keys[team, unum] = host.add(factory(team, unum, (0, 2, 4)[unum - 1]))
-            host.run(2)
-    host.run(100)
+    engine, host, keys = our_team_against_standing(seed=0)
     referee, world = engine.referee, engine.world
     referee.kick_off("Left")
     while not (referee.play_mode == "PlayOn" and referee.game_time_s >= 8.0):

@@ -8,10 +8,11 @@ import logging
 import pytest
 
 from agent.protocol.constants import CYCLE_S
-from motion_studio.match_agents import SideAgents, make_agent
+from motion_studio.match_agents import make_agent
 from sim.engine import SimEngine
 from sim.inprocess import InProcessHost
 from tests.alone_in_play import alone_in_play
+from tests.standing_opponents import our_team_against_standing
 
 
 def _one_striker(seed: int, robot_m: tuple[float, float], ball_m: tuple[float, float]) -> tuple[SimEngine, InProcessHost]:
@@ -24,15 +25,7 @@ def _one_striker(seed: int, robot_m: tuple[float, float], ball_m: tuple[float, f
 def _our_kick_off_against_standing_robots(within_s: float) -> tuple[SimEngine, InProcessHost, dict]:
     """3 v 3 of our agents (types 0, 2, 4) against robots that only stand, seed 0: our kick-off, played until
     PlayOn or ``within_s`` of game time; returns the engine, the host and the robot keys by (team, unum)."""
-    engine = SimEngine(seed=0)
-    host = InProcessHost(engine)
-    factory = SideAgents("ours", "standing")
-    keys = {}
-    for unum in range(1, 4):
-        for team in ("Left", "Right"):
-            keys[team, unum] = host.add(factory(team, unum, (0, 2, 4)[unum - 1]))
-            host.run(2)
-    host.run(100)
+    engine, host, keys = our_team_against_standing(seed=0)
     engine.referee.kick_off("Left")
     for _ in range(round(within_s / CYCLE_S)):
         host.run(1)
