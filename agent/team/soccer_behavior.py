@@ -62,9 +62,9 @@ SET_PIECE_CLEARANCE_M = 2.2
 #: ball, another turn, and both field players went for it (equal distances).
 RESTART_BEHIND_M = 2.3
 #: The player waiting for the drop ball of the opponents' untaken goal kick stands this far from the drop spot
-#: [m]: the drop moves every player whose footprint (0.4 m either side of its torso) reaches 2 m of the ball 2.5 m
-#: toward its own goal; at 2.3 m on the diagonal line from the penalty-area corner the real server moved ours
-#: from (11.7, 4.8) to (10.6, 4.7), off its line (3 v 3 against robots that only stand, 2026-11-27).
+#: [m]: the drop moves every player whose bounding box reaches 2 m of the ball to 2.5 m before it (along x, toward
+#: its own goal); at 2.3 m on the diagonal line from the penalty-area corner the real server moved ours from
+#: (11.7, 4.8) to (10.6, 4.7), off its line; at 2.8 m it stayed (3 v 3 against robots that only stand, 2026-11-27).
 DROP_READY_BEHIND_M = 2.8
 #: At the own kick-off the second attacker waits here [m] (team frame; on its beam spot's side, in the
 #: opponent half but wholly inside the centre circle, where the kick-off rule lets the kicking team stand,
@@ -325,7 +325,8 @@ def goal_kick_drop(world: WorldModel) -> tuple[float, float] | None:
 def drop_ready_spot(drop: tuple[float, float], opponents: list[tuple[float, float]]) -> tuple[float, float]:
     """Where the next on-ball player waits for the ``drop`` of the opponents' untaken goal kick [m, team frame]:
     ``DROP_READY_BEHIND_M`` behind the drop spot on the line it will push the ball along (toward
-    ``attack.goal_target`` from there), so it walks straight into the push when the ball reappears. Waiting
+    ``attack.goal_target``'s aim from there, ``attack.over_the_line``), so it walks straight into the push when the
+    ball reappears. Waiting
     behind the goal-kick spot on the axis instead, it reached the ball 17-20 s after the drop on our simulator
     (10 seeds: a turn, a walk round the defender in front of the goal, turns beside the ball) and 22-29 s on
     the real server (2 of 4 drops)."""
