@@ -75,6 +75,12 @@ DROP_READY_BEHIND_M = 2.8
 #: seeds 1-10, 11-28 s), from here 15.6 s (14-17 s; a tenth run ended in a double-touch free kick, as base
 #: runs sometimes do).
 KICK_OFF_FOLLOW_SPOT_M = (1.0, 1.1)
+#: ... facing this point (team frame) [m], where the kick-off ball comes to rest (4 m straight ahead: real kicks
+#: stopped at x = 3.0-5.4 m, y = -0.9-0.0), not the ball on the centre spot behind it: facing the ball, it turned
+#: 130-180 deg after the kick (4 s) whenever the kick-off took long enough for it to stand on its spot (real
+#: server, 3 v 3 against robots that only stand, 2026-11-27: first touch after the kick 13.8-15.9 s when the kick
+#: came 10-13 s into the kick-off, 7.3-14.1 s when it came at 3-6 s).
+KICK_OFF_FOLLOW_FACING_M = (4.0, 0.0)
 #: The match dribble: far from the goal the ball may go up to 40 deg aside of the line to the aim toward the
 #: field's long axis and 10 deg away from it (``DribbleConfig.free_line_deg``), so a ball that rolled off the
 #: walking line is pushed on from where the robot stands instead of lined up again on the line to the goal.
@@ -183,7 +189,7 @@ class SoccerBehavior:
         kick_off = game.play_mode.startswith("KickOff_")
         if second_attacker and set_piece is True and kick_off:
             # Inside the centre circle: the rule lets it stand there, so kick_off_spot's own-half clamp is skipped.
-            self._stand_at(world, KICK_OFF_FOLLOW_SPOT_M, ball)
+            self._stand_at(world, KICK_OFF_FOLLOW_SPOT_M, KICK_OFF_FOLLOW_FACING_M)
             return
         if second_attacker:
             self._second_side = roles.second_attacker_side(ball, holder, self._second_side)
