@@ -22,6 +22,8 @@ AIM_YS_M = (0.0, -0.45, 0.45, -0.65, 0.65)
 CLEAR_M = 0.4
 #: Aim this far behind the goal line [m], so the ball is played over the line, not to it.
 BEYOND_LINE_M = 0.5
+#: ``over_the_line`` aims the ball's crossing of the goal line from this far before the line on [m].
+CROSSING_FROM_M = 1.0
 #: Opponent sightings older than this are not used [s].
 OPPONENT_FRESH_S = 4.0
 
@@ -65,11 +67,13 @@ def over_the_line(ball: tuple[float, float], aim: tuple[float, float]) -> tuple[
     an oblique line toward the near post: from (13.3, 1.9) toward (15.5, 0.45) it crosses at y = 0.78, 0.27 m
     inside the post, and real pushes from wide spots went 9-16 deg shallower than aimed (the walk's heading lags
     the line), out beside the post: a goal kick (real server, 3 v 3 against robots that only stand: 4 in 6
-    matches). A ball at or past the line keeps ``aim``."""
+    matches). A ball nearer the line than ``CROSSING_FROM_M`` keeps ``aim``: there the line through the aim's
+    goal-line point turns sideways (a ball 4 cm before the line and 0.6 m beside the aim was pushed along the line,
+    not over it)."""
     dx, dy = GOAL_LINE_X_M - ball[0], aim[1] - ball[1]
-    distance = math.hypot(dx, dy)
-    if dx <= 1e-6:
+    if dx < CROSSING_FROM_M:
         return aim
+    distance = math.hypot(dx, dy)
     return GOAL_LINE_X_M + BEYOND_LINE_M * dx / distance, aim[1] + BEYOND_LINE_M * dy / distance
 
 

@@ -129,7 +129,7 @@ def test_the_player_waiting_for_a_goal_kick_s_drop_stands_behind_it_on_its_push_
     assert x < 13.2 or abs(y) > 3.0   # outside the penalty area the referee keeps clear during the goal kick
 
 
-@pytest.mark.parametrize("ball", [(13.3, 1.9), (13.2, 3.0), (10.0, -4.0), (12.0, 0.0)])
+@pytest.mark.parametrize("ball", [(13.3, 1.9), (13.2, 3.0), (10.0, -4.0), (12.0, 0.0), (13.9, -0.5)])
 @pytest.mark.parametrize("aim_y", [0.0, 0.45, -0.65])
 def test_the_ball_is_played_over_the_line_where_the_aim_crosses_it(ball, aim_y):
     """The dribble's target lies beyond the goal line on the line from the ball through the aim's goal-line
@@ -139,3 +139,11 @@ def test_the_ball_is_played_over_the_line_where_the_aim_crosses_it(ball, aim_y):
     assert math.hypot(x - GOAL_LINE_X_M, y - aim_y) == pytest.approx(BEYOND_LINE_M)
     crossing = ball[1] + (y - ball[1]) * (GOAL_LINE_X_M - ball[0]) / (x - ball[0])
     assert crossing == pytest.approx(aim_y)
+
+
+@pytest.mark.parametrize("ball", [(14.96, -0.17), (14.5, 0.3), (15.2, 0.0)])
+def test_a_ball_near_the_goal_line_is_played_at_the_aim_itself(ball):
+    """Within ``CROSSING_FROM_M`` of the line the line through the aim's goal-line point turns sideways: the plain
+    aim behind the line (a ball 4 cm before the line, 0.6 m beside the aim, was pushed along the line)."""
+    aim = (GOAL_LINE_X_M + BEYOND_LINE_M, 0.45)
+    assert over_the_line(ball, aim) == aim
