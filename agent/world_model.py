@@ -124,7 +124,9 @@ class WorldModel:
             return
         game.game_time_s = gs.game_time_s
         if gs.play_mode != game.play_mode:
-            ended, lasted_s = game.play_mode, game.server_time_s - game.play_mode_since_s
+            # How long the ending mode lasted, when its start was seen (not for the mode an agent connected into).
+            lasted_s = game.server_time_s - game.play_mode_since_s if game.play_mode_since_s > 0.0 else 0.0
+            ended = game.play_mode
             if game.play_mode != "unknown":
                 game.play_mode_since_s = game.server_time_s
                 game.play_mode_cycles = 0

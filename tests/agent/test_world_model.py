@@ -235,3 +235,16 @@ def test_the_goal_kick_drop_spot_is_the_front_corner_of_the_kicking_team_s_area_
 
     assert goal_kick_drop_m("right") == pytest.approx((13.2, 3.0))
     assert goal_kick_drop_m("left") == pytest.approx((-13.2, 3.0))
+
+
+def test_an_agent_that_connects_during_a_goal_kick_does_not_guess_a_drop():
+    # Its first message already says goal_kick_right: how long that mode ran is unknown, so PlayOn 2 s later
+    # (the keeper kicked) must not put the ball at the corner.
+    model = WorldModel("Mine", 3)
+    rng = random.Random(5)
+    for i in range(100):
+        seen = synth.see(6.0, -2.5, math.radians(20.0), ball=(14.0, 0.0), rng=rng) if i % 3 == 0 else None
+        model.update(parse_sense(synth.sense_bytes(400.0 + 0.02 * i, see_value=seen, play_mode="goal_kick_right",
+                                                   unum=3 if i == 0 else None, side="left" if i == 0 else None)))
+    model.update(parse_sense(synth.sense_bytes(402.0, play_mode="PlayOn")))
+    assert model.ball is not None and model.ball.source == "vision"
