@@ -136,6 +136,13 @@ def upright(poses: dict[int, Pose], cycles: range) -> bool:
     return all(poses[i].up_z >= 0.6 and poses[i].torso_m[2] >= 0.25 for i in cycles)
 
 
+def ball_travel_m(run: Replay) -> tuple[float, float]:
+    """How far the ball moved from the skill phase's start to the last real cycle: (real, ours) [m]."""
+    start, end = run.meta["skill_cycle"], max(run.real)
+    real, ours = (math.dist(poses[start].ball_m[:2], poses[end].ball_m[:2]) for poses in (run.real, run.ours))
+    return real, ours
+
+
 def test_stand_height_and_stillness() -> None:
     run = replay("stand")
     cycles = window(run, 200)
@@ -255,8 +262,7 @@ def test_a_side_step_into_the_ball_pushes_it_as_far_as_on_the_real_server() -> N
     # max(2, 2) on the ground: 1.06 m). Gentle foot contacts, where the kick's are hard (see sim.physics_params).
     run = replay("walk_left_ball_beside")
     end = max(run.real)
-    travelled = [math.dist(poses[run.meta["skill_cycle"]].ball_m[:2], poses[end].ball_m[:2])
-                 for poses in (run.real, run.ours)]
+    travelled = ball_travel_m(run)
     assert travelled[0] > 1.0   # measured 1.48 m
     assert travelled[1] == pytest.approx(travelled[0], rel=0.2)   # measured 1.47 m (1.65 m before the push fit)
     assert upright(run.ours, range(run.meta["skill_cycle"], end + 1))
@@ -270,8 +276,7 @@ def test_the_dribble_s_walking_pushes_move_the_ball_as_far_as_on_the_real_server
     # (sim.physics_params, "Ball contacts, fitted on pushes too").
     run = replay("dribble_push_simcmds")
     end = max(run.real)
-    travelled = [math.dist(poses[run.meta["skill_cycle"]].ball_m[:2], poses[end].ball_m[:2])
-                 for poses in (run.real, run.ours)]
+    travelled = ball_travel_m(run)
     assert travelled[0] == pytest.approx(2.71, abs=0.01)
     assert travelled[1] == pytest.approx(travelled[0], rel=0.15)   # measured 2.62 m (-3 %)
     assert upright(run.ours, range(run.meta["skill_cycle"], end + 1))
@@ -303,7 +308,7 @@ def test_the_real_dribble_s_own_commands_reach_the_ball_as_on_the_real_server() 
     assert _first_touch(run.ours, start) == touch
     assert max(math.dist(run.real[i].torso_m[:2], run.ours[i].torso_m[:2]) for i in range(start, touch + 1)) < 0.01
     assert max(abs(run.real[i].heading_deg - run.ours[i].heading_deg) for i in range(start, touch + 1)) < 2.0
-    travelled = [math.dist(poses[start].ball_m[:2], poses[end].ball_m[:2]) for poses in (run.real, run.ours)]
+    travelled = ball_travel_m(run)
     assert travelled[0] == pytest.approx(2.45, abs=0.01)
     assert travelled[1] == pytest.approx(travelled[0], rel=0.15)   # measured 2.64 m (+8 %)
     assert upright(run.ours, range(start, end + 1))
@@ -347,9 +352,7 @@ def test_twelve_seconds_of_the_real_walk_stay_upright() -> None:
                    "3b6a27e and ODE's stops; the guard now also puts the ball back.)")
 def test_same_kick_commands_move_the_ball_as_far() -> None:
     run = replay("kick_dryrun_simcmds")
-    end = max(run.real)
-    travelled = [math.dist(poses[run.meta["skill_cycle"]].ball_m[:2], poses[end].ball_m[:2])
-                 for poses in (run.real, run.ours)]
+    travelled = ball_travel_m(run)
     assert travelled[0] > 0.5  # measured 0.84 m
     assert travelled[1] == pytest.approx(travelled[0], rel=0.3)
 
@@ -367,8 +370,7 @@ def test_the_distance_controlled_kick_s_real_commands_keep_their_order_on_ours()
     for distance in (1, 2, 3, 4):
         run = replay(f"kick_{distance}m")
         end = max(run.real)
-        real, ours = (math.dist(poses[run.meta["skill_cycle"]].ball_m[:2], poses[end].ball_m[:2])
-                      for poses in (run.real, run.ours))
+        real, ours = ball_travel_m(run)
         assert abs(ours - real) < 1.0, (distance, real, ours)
         if distance <= 2:
             assert upright(run.ours, range(run.meta["skill_cycle"], end + 1))
