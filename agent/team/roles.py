@@ -120,6 +120,42 @@ def on_ball_cost(candidate: Candidate, ball: tuple[float, float], holder: int | 
     return cost - HOLDER_BONUS_M if candidate.unum == holder else cost
 
 
+#: A teammate believed to play the ball keeps the holder bonus only while it plays: nearer the ball than
+#: ``HOLDER_ENGAGED_M`` [m], or come ``HOLDER_PROGRESS_M`` nearer it within the last ``HOLDER_STALL_S`` [m, s].
+#: Why: each player applies the bonus to its own belief of the holder, so two players that each believed the other
+#: the holder both stood still, and their costs (0.1 m apart) never changed: on the real server two field players
+#: stood 2.9 m from the ball on the centre spot for the last 58 s of a match (3 v 3 against robots that only
+#: stand, seed 72 at b2a64a5; tests/scenarios/test_holder_deadlock.py). 5 s leaves a holder its chained turns
+#: (a 180 deg turn before a walk takes 3.6 s) and its walk round the ball (within 1 m of it).
+HOLDER_ENGAGED_M = 1.5
+HOLDER_PROGRESS_M = 0.2
+HOLDER_STALL_S = 5.0
+
+
+@dataclass(slots=True)
+class HolderWatch:
+    """Whether the teammate this player believes to play the ball is playing it (keeps the holder bonus)."""
+
+    holder: int | None = None
+    since_s: float = 0.0
+    nearest_m: float = math.inf
+
+    def keeps_bonus(self, now_s: float, holder: int | None, me: int, players: list[Candidate],
+                    ball: tuple[float, float], open_play: bool) -> bool:
+        """False once a believed holder other than ``me`` has neither been near the ball nor come nearer it for
+        ``HOLDER_STALL_S`` of open play; then the on-ball choice is made without the bonus (the plain costs,
+        from positions every player shares, end a crossed belief)."""
+        player = next((p for p in players if p.unum == holder), None)
+        if holder == me or player is None or not open_play:
+            self.holder = None
+            return True
+        distance = math.hypot(ball[0] - player.x_m, ball[1] - player.y_m)
+        if holder != self.holder or distance <= HOLDER_ENGAGED_M or distance <= self.nearest_m - HOLDER_PROGRESS_M:
+            self.holder, self.since_s, self.nearest_m = holder, now_s, distance
+            return True
+        return now_s - self.since_s < HOLDER_STALL_S
+
+
 def keeper_plays_ball(ball: tuple[float, float]) -> bool:
     """The ball is in the own penalty area, where the goalkeeper clears it itself."""
     return ball[0] < PENALTY_AREA_X_M and abs(ball[1]) < PENALTY_AREA_HALF_WIDTH_M

@@ -107,6 +107,8 @@ class SoccerBehavior:
         """The unum this player believes plays the ball (hysteresis of the on-ball rule)."""
         self.role = "idle"
         """This cycle's role: idle, on_ball, keeper, support (for logs and tests)."""
+        self._holder_watch = roles.HolderWatch()
+        """Whether the believed holder (another player) is playing the ball, else its bonus lapses."""
         self.taker = TakerMemory()
         """Who took the own team's last set piece (it may not touch the ball again first)."""
         self._world: WorldModel | None = None
@@ -167,7 +169,10 @@ class SoccerBehavior:
         allowed = [p for p in players if p.unum != excluded]
         # At the opponents' goal kick the ball that matters is the one the drop will bring (see goal_kick_drop).
         drop = goal_kick_drop(world)
-        self.holder = roles.choose_on_ball(allowed, ball if drop is None else drop, self.holder)
+        on_ball = ball if drop is None else drop
+        holder = self.holder if self._holder_watch.keeps_bonus(world.now_s, self.holder, world.unum, players, on_ball,
+                                                               open_play=set_piece is None) else None
+        self.holder = roles.choose_on_ball(allowed, on_ball, holder)
         if self.holder == world.unum and set_piece is True:
             self.role = "set_piece"
             self._take_set_piece(world, ball)

@@ -7,8 +7,8 @@ import math
 import pytest
 
 from agent.team import roles
-from agent.team.roles import (FIELD_X_MIN_M, SUPPORT_CLEARANCE_M, Candidate, around_ball_deg, choose_on_ball,
-                              keeper_spot, on_ball_cost, support_spot)
+from agent.team.roles import (FIELD_X_MIN_M, HOLDER_STALL_S, SUPPORT_CLEARANCE_M, Candidate, HolderWatch,
+                              around_ball_deg, choose_on_ball, keeper_spot, on_ball_cost, support_spot)
 
 
 def test_the_nearest_player_behind_the_ball_plays_it():
@@ -163,3 +163,34 @@ def test_the_second_attacker_keeps_its_side_until_the_holder_clearly_crosses_the
     assert roles.second_attacker_side(ball, None, current=-1.0) == -1.0
     right = roles.second_attacker_spot(ball, (-1.0, -0.3), side=-1.0)
     assert right[1] < 0.0
+
+
+def test_a_believed_holder_that_neither_plays_nor_nears_the_ball_loses_its_bonus_after_the_stall_time():
+    ball = (0.0, 0.0)
+    me, other = Candidate(2, -2.5, 1.4), Candidate(3, -2.5, -1.4)
+    watch = HolderWatch()
+    assert watch.keeps_bonus(10.0, 3, 2, [me, other], ball, open_play=True)
+    assert watch.keeps_bonus(10.0 + HOLDER_STALL_S - 0.1, 3, 2, [me, other], ball, open_play=True)
+    assert not watch.keeps_bonus(10.0 + HOLDER_STALL_S, 3, 2, [me, other], ball, open_play=True)
+    # Coming 0.2 m nearer restarts the time; so does a set piece (the holder waits for it by rule).
+    nearer = Candidate(3, -2.3, -1.3)
+    assert watch.keeps_bonus(20.0, 3, 2, [me, nearer], ball, open_play=True)
+    assert watch.keeps_bonus(20.0 + HOLDER_STALL_S - 0.1, 3, 2, [me, nearer], ball, open_play=True)
+    assert watch.keeps_bonus(40.0, 3, 2, [me, nearer], ball, open_play=False)
+    assert watch.keeps_bonus(40.0 + HOLDER_STALL_S - 0.1, 3, 2, [me, nearer], ball, open_play=True)
+
+
+def test_a_holder_at_the_ball_or_the_player_itself_keeps_the_bonus():
+    ball = (0.0, 0.0)
+    at_ball = Candidate(3, -1.0, 0.5)   # going round it, 1.1 m away, for a long time
+    watch = HolderWatch()
+    assert all(watch.keeps_bonus(t, 3, 2, [at_ball], ball, open_play=True) for t in (0.0, 10.0, 60.0))
+    far_me = Candidate(2, -8.0, 0.0)
+    assert all(watch.keeps_bonus(t, 2, 2, [far_me], ball, open_play=True) for t in (0.0, 10.0, 60.0))
+
+
+def test_with_crossed_beliefs_both_players_choose_the_same_holder_once_the_bonus_lapses():
+    ball = (0.0, 0.0)
+    players = [Candidate(2, -2.5, 1.4), Candidate(3, -2.5, -1.4)]
+    assert choose_on_ball(players, ball, holder=3) == 3 and choose_on_ball(players, ball, holder=2) == 2
+    assert choose_on_ball(players, ball, holder=None) == 2   # equal costs: the lower unum, for both of them

@@ -1,0 +1,34 @@
+"""Two field players that each believe the other plays the ball (issue 15): nobody may stand for ever.
+
+Found on the real rcssserver3d 0.7.3 (3 v 3 against robots that only stand, 120 s, seed 72 at b2a64a5): after our
+goal the opponents' kick-off ran out, the ball lay on the centre spot in PlayOn, and our two field players stood
+at (-2.5, 1.4) and (-2.5, -1.5), 2.9 m from it, for the last 58 s of the match. Their on-ball costs differ by about
+0.1 m and the believed holder gets a 1 m bonus (REFERENCE §7.10's hysteresis), so once each player held the other
+as the holder, neither one's choice could change while nobody moved. The scenario below crosses the two beliefs
+on purpose at the start of PlayOn: before ``roles.HolderWatch`` nobody touched the ball in 25 s (seeds 0-3); with it
+the first touch came 5.8-10.7 s after PlayOn (seeds 0-3; 4.8 s when the beliefs were not crossed).
+"""
+
+from __future__ import annotations
+
+from tests.standing_opponents import our_team_against_standing
+
+
+def test_crossed_holder_beliefs_do_not_leave_the_ball_lying():
+    engine, host, keys = our_team_against_standing(seed=0)
+    referee, world = engine.referee, engine.world
+    referee.kick_off("Right")   # robots that only stand never take it: PlayOn after its 15 s
+    while referee.play_mode != "PlayOn":
+        host.run(1)
+    world.place_robot(keys["Left", 2], -2.5, 1.4, -30.0)
+    world.place_robot(keys["Left", 3], -2.5, -1.4, 30.0)
+    host.run(10)
+    behaviors = {unum: host.agents[keys["Left", unum]].behavior for unum in (2, 3)}
+    behaviors[2].holder, behaviors[3].holder = 3, 2
+    start_s = referee.game_time_s
+    touched_s = None
+    while touched_s is None and referee.game_time_s < start_s + 25.0:
+        host.run(1)
+        if any(t[0] == "left" for t in world.ball_touchers()):
+            touched_s = referee.game_time_s
+    assert touched_s is not None and touched_s - start_s < 15.0
