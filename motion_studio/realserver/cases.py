@@ -19,6 +19,7 @@ from agent.protocol.effectors import Action, JointVelocity
 from agent.skills.base import PlayMotion, Skill
 from agent.skills.behavior import SkillBehavior
 from agent.skills.dribble import Dribble, DribbleConfig
+from agent.skills.kick import KickToward
 from agent.skills.standup import StandUp
 from agent.skills.turn import TurnBy
 from agent.world_model import WorldModel
@@ -158,6 +159,22 @@ def _controlled_kick(distance_m: int) -> Case:
 
 for _distance in CONTROLLED_KICK_M:
     CASES[f"kick_{_distance}m"] = _controlled_kick(_distance)
+#: Distances of the kick line-up cases kick_lineup_<d>cm, robot torso to ball before the stand [cm]: the kick-off
+#: spot (``agent.formation.KICK_OFF_SPOT_M``) puts the taker 0.5 m behind the ball and the beam adds +-5 cm.
+KICK_LINEUP_CM = (45, 50, 55)
+
+
+def _kick_lineup(distance_cm: int) -> Case:
+    """The kick skill's line-up and kick toward the opponent goal (``KickToward``, as a set-piece taker starts it)
+    from ``distance_cm`` straight behind the ball: on the real server its kick grazed the ball from 45 and 55 cm
+    (9 of 18 starts of a grid with headings -8/0/+8 deg) until the loose window ended at 4.5 cm."""
+    return Case(f"kick_lineup_{distance_cm}cm",
+                lambda: SkillSequence((PlayMotion("stand"), STAND_CYCLES), (KickToward(15.0, 0.0), None), (None, None)),
+                STAND_CYCLES + 900, ball_m=(-8.0 + distance_cm / 100.0, 0.0), motion="kick")
+
+
+for _distance in KICK_LINEUP_CM:
+    CASES[f"kick_lineup_{_distance}cm"] = _kick_lineup(_distance)
 
 
 @dataclass(frozen=True)
