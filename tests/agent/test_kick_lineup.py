@@ -160,3 +160,13 @@ def test_long_kick_missing_its_narrow_window_late_plays_the_normal_kick_at_once(
 def test_long_kick_far_from_the_ball_walks_in_for_the_long_kick():
     move = _decide_strong((1.0, 0.02))
     assert move.kind == "walk_in"
+
+
+@pytest.mark.parametrize("beyond_m", [0.30, 0.31, 0.32])
+def test_a_walk_in_that_would_end_on_the_ball_steps_back_first(beyond_m):
+    """One stride (0.333 m) from 0.30-0.32 m beyond the spot would end 1-3 cm short of it: on the real server that
+    walk-in pushed the ball away (the kick-off taker after 1 in 5 beams); a kick step back makes room."""
+    move = decide((0.118 + beyond_m, 0.0))
+    assert (move.kind, move.motion) == ("move", "kick_step_backward")
+    after_step = decide((0.118 + beyond_m + 2 * KICK_STEP_M, 0.0))
+    assert after_step.kind == "walk_in" and after_step.strides == 1
