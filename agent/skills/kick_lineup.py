@@ -65,10 +65,11 @@ class KickConfig:
     """... to [m]: on the real rcssserver3d 0.7.3 the kick grazes the ball from 6 cm beyond its spot (kick_check,
     2026-11-26: 4.06 m from +5 cm, 0.08 m from +6 cm), and the walk-in there ends 1.5-2.3 cm farther from the ball
     than ours. With 0.08 (the retuned kick of ec1e311 flies 2.8-2.9 m on ours from 3.5-8 cm) the kick-off taker's
-    line-up under the beam's noise (robot 0.45-0.55 m behind the ball, heading -8/0/+8 deg, 18 starts,
-    ``/work/su/s16/ko.py``) grazed the ball (0.02-0.10 m) in 9 of 18 starts on the real server, from +5.5 to +6.3
-    cm; with 0.045 (and kick steps into this window, ``plan``) 0 of 18, every kick 3.2-4.4 m, the ball moving
-    7.2 s after the stand on average instead of 5.8; ours 3 of 18 short kicks (0.5-0.7 m) before, none after..."""
+    line-up under the beam's noise (robot 0.45-0.55 m behind the ball, heading -8/0/+8 deg, 18 starts: the
+    ``kick_lineup_<d>cm`` cases of ``motion-studio real skills`` turned by the heading) grazed the ball (0.02-0.10
+    m) in 9 of 18 starts on the real server, from +5.5 to +6.3 cm; with 0.045, kick steps into this window and the
+    step back before a walk-in that would end short (``plan``): 0 of 18, every kick 3.1-4.4 m, the ball moving 7.8 s
+    after the stand on average instead of 5.8; ours 3 of 18 short kicks (0.5-0.7 m) before, none after..."""
     loose_lateral_in_m: float = 0.04
     """... and across it within this toward the middle [m]..."""
     loose_lateral_out_m: float = 0.022
@@ -371,7 +372,7 @@ def plan(config: KickConfig, ball: tuple[float, float], aim_rad: float, spots: l
         if after >= config.walk_in_min_after_m:
             return a, Move("walk_in", FORWARD, strides=strides, why=f"walk in, {after:+.3f} m after")
         # One stride too long by a step or two: step back rather than walk onto the ball (planned to end 2.7 cm
-        # short, a real walk-in pushed the ball away; the kick-off taker stands in this band after 1 in 5 beams).
+        # short, a real walk-in pushed the ball away; the kick-off taker stands in this band after 1 in 4 beams).
         if after >= config.walk_in_min_after_m - 2 * step_m and STEP_BACKWARD in motions:
             return a, Move("move", STEP_BACKWARD, why=f"kick step back: a walk-in would end {after:+.3f} m")
     if fine_steps < config.max_fine_steps:
