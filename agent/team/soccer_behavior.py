@@ -172,7 +172,10 @@ class SoccerBehavior:
         on_ball = ball if drop is None else drop
         holder = self.holder if self._holder_watch.keeps_bonus(world.now_s, self.holder, world.unum, players, on_ball,
                                                                open_play=set_piece is None) else None
-        self.holder = roles.choose_on_ball(allowed, on_ball, holder)
+        if set_piece is False and game.play_mode.startswith("KickOff_"):
+            self.holder = roles.kick_off_receiver(allowed)
+        else:
+            self.holder = roles.choose_on_ball(allowed, on_ball, holder)
         if self.holder == world.unum and set_piece is True:
             self.role = "set_piece"
             self._take_set_piece(world, ball)

@@ -194,3 +194,10 @@ def test_with_crossed_beliefs_both_players_choose_the_same_holder_once_the_bonus
     players = [Candidate(2, -2.5, 1.4), Candidate(3, -2.5, -1.4)]
     assert choose_on_ball(players, ball, holder=3) == 3 and choose_on_ball(players, ball, holder=2) == 2
     assert choose_on_ball(players, ball, holder=None) == 2   # equal costs: the lower unum, for both of them
+
+
+def test_at_the_opponents_kick_off_every_player_names_the_lowest_field_unum():
+    players = [Candidate(1, -14.0, 0.0), Candidate(3, -2.5, -1.2), Candidate(2, -2.5, 1.3)]
+    assert roles.kick_off_receiver(players) == 2
+    assert roles.kick_off_receiver([Candidate(1, -14.0, 0.0), Candidate(3, -2.5, -1.2)]) == 3  # 2 fallen or silent
+    assert roles.kick_off_receiver([Candidate(1, -14.0, 0.0)]) is None

@@ -32,3 +32,30 @@ def test_crossed_holder_beliefs_do_not_leave_the_ball_lying():
         if any(t[0] == "left" for t in world.ball_touchers()):
             touched_s = referee.game_time_s
     assert touched_s is not None and touched_s - start_s < 15.0
+
+
+def test_at_the_opponents_kick_off_both_field_players_name_the_same_receiver():
+    """Crossed beliefs at the start of the opponents' kick-off: within the kick-off both players name unum 2 (the
+    lowest field unum, ``roles.kick_off_receiver``), which waits behind the ball and plays it after PlayOn."""
+    engine, host, keys = our_team_against_standing(seed=1)
+    referee, world = engine.referee, engine.world
+    referee.kick_off("Right")
+    world.place_robot(keys["Left", 2], -2.5, 1.3, -30.0)   # where the kick-off beam leaves them: symmetric
+    world.place_robot(keys["Left", 3], -2.5, -1.3, 30.0)
+    host.run(2)
+    behaviors = {unum: host.agents[keys["Left", unum]].behavior for unum in (2, 3)}
+    for _ in range(150):   # crossed for 3 s, until both hear each other where they stand
+        behaviors[2].holder, behaviors[3].holder = 3, 2
+        host.run(1)
+    host.run(5)
+    assert behaviors[2].holder == behaviors[3].holder == 2
+    while referee.play_mode != "PlayOn":
+        host.run(1)
+    start_s = referee.game_time_s
+    touched_s = None
+    while touched_s is None and referee.game_time_s < start_s + 20.0:
+        host.run(1)
+        if any(t[0] == "left" for t in world.ball_touchers()):
+            touched_s = referee.game_time_s
+    assert touched_s is not None and touched_s - start_s < 8.0
+    assert ("left", 2) in world.ball_touchers()
