@@ -25,13 +25,8 @@ def test_crossed_holder_beliefs_do_not_leave_the_ball_lying():
     host.run(10)
     behaviors = {unum: host.agents[keys["Left", unum]].behavior for unum in (2, 3)}
     behaviors[2].holder, behaviors[3].holder = 3, 2
-    start_s = referee.game_time_s
-    touched_s = None
-    while touched_s is None and referee.game_time_s < start_s + 25.0:
-        host.run(1)
-        if any(t[0] == "left" for t in world.ball_touchers()):
-            touched_s = referee.game_time_s
-    assert touched_s is not None and touched_s - start_s < 15.0
+    touched_after_s = _seconds_to_our_touch(engine, host, limit_s=25.0)
+    assert touched_after_s is not None and touched_after_s < 15.0
 
 
 def test_at_the_opponents_kick_off_both_field_players_name_the_same_receiver():
@@ -51,11 +46,16 @@ def test_at_the_opponents_kick_off_both_field_players_name_the_same_receiver():
     assert behaviors[2].holder == behaviors[3].holder == 2
     while referee.play_mode != "PlayOn":
         host.run(1)
-    start_s = referee.game_time_s
-    touched_s = None
-    while touched_s is None and referee.game_time_s < start_s + 20.0:
-        host.run(1)
-        if any(t[0] == "left" for t in world.ball_touchers()):
-            touched_s = referee.game_time_s
-    assert touched_s is not None and touched_s - start_s < 8.0
+    touched_after_s = _seconds_to_our_touch(engine, host, limit_s=20.0)
+    assert touched_after_s is not None and touched_after_s < 8.0
     assert ("left", 2) in world.ball_touchers()
+
+
+def _seconds_to_our_touch(engine, host, limit_s: float) -> float | None:
+    """Game seconds until a left player touches the ball (None within ``limit_s``)."""
+    start_s = engine.referee.game_time_s
+    while engine.referee.game_time_s < start_s + limit_s:
+        host.run(1)
+        if any(t[0] == "left" for t in engine.world.ball_touchers()):
+            return engine.referee.game_time_s - start_s
+    return None
