@@ -24,7 +24,7 @@ from agent.skills.standup import StandUp
 from agent.skills.turn import TurnBy
 from agent.world_model import WorldModel
 from motion_studio.realserver.git_export import export_motions, short_revision
-from agent.protocol.constants import CYCLE_S
+from agent.protocol.constants import CYCLE_S, HALF_LENGTH_M
 from motion_studio.skill_bench import dribble as dribble_bench
 
 #: Cycles before the move (scene, init, the agent's own beam), as motion_studio.scenarios.CONNECT_CYCLES.
@@ -166,10 +166,10 @@ KICK_LINEUP_CM = (45, 50, 55)
 
 def _kick_lineup(distance_cm: int) -> Case:
     """The kick skill's line-up and kick toward the opponent goal (``KickToward``, as a set-piece taker starts it)
-    from ``distance_cm`` straight behind the ball: on the real server its kick grazed the ball from 45 and 55 cm
+    from ``distance_cm`` straight behind the ball, aimed at the opponent goal's centre: on the real server its kick grazed the ball from 45 and 55 cm
     (9 of 18 starts of a grid with headings -8/0/+8 deg) until the loose window ended at 4.5 cm."""
     return Case(f"kick_lineup_{distance_cm}cm",
-                lambda: SkillSequence((PlayMotion("stand"), STAND_CYCLES), (KickToward(15.0, 0.0), None), (None, None)),
+                lambda: SkillSequence((PlayMotion("stand"), STAND_CYCLES), (KickToward(HALF_LENGTH_M, 0.0), None), (None, None)),
                 STAND_CYCLES + 900, ball_m=(-8.0 + distance_cm / 100.0, 0.0), motion="kick")
 
 
