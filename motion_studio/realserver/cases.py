@@ -166,11 +166,13 @@ KICK_LINEUP_CM = (45, 50, 55)
 
 def _kick_lineup(distance_cm: int) -> Case:
     """The kick skill's line-up and kick toward the opponent goal (``KickToward``, as a set-piece taker starts it)
-    from ``distance_cm`` straight behind the ball, aimed at the opponent goal's centre: on the real server its kick grazed the ball from 45 and 55 cm
-    (9 of 18 starts of a grid with headings -8/0/+8 deg) until the loose window ended at 4.5 cm."""
-    return Case(f"kick_lineup_{distance_cm}cm",
-                lambda: SkillSequence((PlayMotion("stand"), STAND_CYCLES), (KickToward(HALF_LENGTH_M, 0.0), None), (None, None)),
-                STAND_CYCLES + 900, ball_m=(-8.0 + distance_cm / 100.0, 0.0), motion="kick")
+    from ``distance_cm`` straight behind the ball, aimed at the opponent goal's centre: on the real server its kick
+    grazed the ball from 45 and 55 cm (9 of 18 starts of a grid with headings -8/0/+8 deg) until the loose window
+    ended at 4.5 cm."""
+    def skill() -> Skill:
+        return SkillSequence((PlayMotion("stand"), STAND_CYCLES), (KickToward(HALF_LENGTH_M, 0.0), None), (None, None))
+
+    return Case(f"kick_lineup_{distance_cm}cm", skill, STAND_CYCLES + 900, ball_m=(-8.0 + distance_cm / 100.0, 0.0), motion="kick")
 
 
 for _distance in KICK_LINEUP_CM:

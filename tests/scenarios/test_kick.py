@@ -160,7 +160,8 @@ def test_the_kick_off_line_up_kicks_from_the_whole_range_of_the_beam(distance_cm
     more: ours kicks 1.9-2.2 m from within 1.5 cm of the spot and about 4 m from 3-4 cm beyond it (18 starts: 1.86-4.1
     m); the real kick 3.1-4.4 m.
     With the loose window reaching 8 cm the real kick grazed the ball from 45 and 55 cm (9 of 18 starts, heading
-    -8/0/+8 deg; 0.02-0.10 m) and ours kicked it 0.5-0.7 m from 3 of 18 (47 cm, and 55 cm turned 8 deg right, among them)."""
+    -8/0/+8 deg; 0.02-0.10 m) and ours kicked it 0.5-0.7 m from 3 of 18 (47 cm, and 55 cm turned 8 deg right, among
+    them)."""
     from dataclasses import replace
 
     from motion_studio.realserver.cases import CASES, MotionSource
