@@ -84,7 +84,7 @@ sessions), benchmarks/bench_sim.py.
   (tests/sim/fixtures/real_0.7.3_skill_kick*.jsonl.gz, motions 66e41c9) gives 3.87 m at μ 0.3, 4.01 at 0.5,
   4.00 at 0.7 and 2.43 at 1.0 and above (the jam returns), so μ = 0.5 is the middle of the agreeing range.
   Live (``motion-studio transfer --case kick --case kick_left``): real 4.086 m, ours 4.004 (was 2.438). Probe:
-  /work/su/phys/sweep2.py (the sweep), ``motion-studio calibrate --only kick --only ball_roll --details``.
+  ``motion-studio calibrate --only kick --only ball_roll --details``.
   Gentle contacts (scripts/real_ball_push.py, our agent on both servers): a 3 s walk_left into a ball beside the
   left foot pushes the real ball 1.48 m, ours 1.68 m (mu 2 before: 0.86 m); walk_forward into a ball 0.3 m ahead
   (on the right-foot line, centred, on the left-foot line): real 3.49, 1.72, 2.10 m, ours 3.58, 3.58, 3.13 (mu 2:
@@ -136,7 +136,7 @@ sessions), benchmarks/bench_sim.py.
   the buttocks are the thigh boxes, up to ~50 N on each while sitting up) has ``body_friction`` = 0.95, and so have
   the field and the goals (MuJoCo takes the larger of the two geoms' friction, so the static geometry takes the
   lower of the two robot values). Ours now slides 0.30 m in start 2 and stands. Measured (our agent closed loop on
-  the transfer's lying starts 0-9, seeds 0 and 1, /work/su/backup/live3.py; first-attempt stands of 10, lying on the
+  the transfer's lying starts 0-9, seeds 0 and 1; first-attempt stands of 10, lying on the
   back): μ 0.5 -> 0 (9 stand at the second attempt, 5.6 s), 0.8 -> 10 / 7, 0.85 -> 8, 0.9 -> 10 / 10, 0.93 -> 3 / 3,
   0.95 -> 10 / 10, 0.97 -> 8 / 10, 1.0 -> 9 / 9, 1.1 -> 0, 1.2 -> 2, 2 (before) -> none stands at all; lying on the
   front 10/10 at every value from 0.8 to 1.2. The outcome of one start flips with a few hundredths of μ (the real
@@ -155,8 +155,8 @@ sessions), benchmarks/bench_sim.py.
   the real robot's state). On the stand-up tuner's own scripted falls onto the back
   (motion_studio.realserver.rollout_standup.StandUpBench, seeds 0, 1, 3, 10 each; real 8 + 9 + 10 = 27/30) ours
   stood in 7 + 9 + 8 = 24/30 with μ 2 and 8 + 7 + 7 = 22/30 with 0.95 (0.5 to 1.2: 21-23/30, the starts that fail
-  change with μ); onto the front 20/20 with both (/work/su/backup/bench.py). Per transfer start
-  (/work/su/backup/travel.py: torso x gained in the 70 cycles from the lowest point before the sit-up): the real
+  change with μ); onto the front 20/20 with both. Per transfer start
+  (torso x gained in the 70 cycles from the lowest point before the sit-up): the real
   robot is bimodal, 0.40-0.42 m in the six starts that stand at once, 0.24-0.28 m in the four whose first attempt
   fails (0 and 1 stand at the second, 5 and 9 never); ours 0.34 m in every start (μ 2: 0.17 m), so it stands in all.
   Lying still before the sit-up the real torso moves -0.02 to +0.11 m, ours -0.01 to -0.11 m (backward, with either

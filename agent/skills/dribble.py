@@ -50,17 +50,17 @@ class DribbleConfig:
     beyond it only from here on [m]. Why: walking at the point beyond, a ball 0.1 m off the walking line stayed
     there (the bearing to a point 1 m away barely leans the walk), and a foot meeting the ball that far out
     sends it 20-50 deg aside or misses it. From 24 starts behind the ball (0.7 and 1.5 m, +-0.04 to +-0.25 m
-    across, +-15 deg; /work/su/s2/push3.py) the ball's direction after 12 s was off by 8.3 deg on average
+    across, +-15 deg; a measurement script, not kept) the ball's direction after 12 s was off by 8.3 deg on average
     instead of 13.2 (more than 20 deg: 2 instead of 4)."""
     push_aim_left_m: tuple[float, ...] = (0.0, 0.08, 0.0, 0.11, 0.08)
     """Pushing, the robot walks at a point this far left (ego) of the ball or the push point, per robot type 0-4
     [m], so that the ball meets the front of the right foot rather than the gap between the feet, whose inner
     edges sent it off sideways. Measured from 16 starts 1.0 and 2.2 m behind the ball (+-0.03 and +-0.1 m
-    across, +-10 deg; /work/su/s3/push4.py, seeds 0 and 1): the ball's direction 0.3 m after the first touch
+    across, +-10 deg, seeds 0 and 1; a measurement script, not kept): the ball's direction 0.3 m after the first touch
     was off by 29 / 24 / 19 deg on average for types 1 / 3 / 4 when walking at the ball itself, 3-5 deg with
     these offsets, and the ball went 5.5-6.0 / 4.6 / 4.8-5.0 m in 12 s instead of 3.2 / 2.8 / 3.6 m. Types 0 and
     2 (the same legs once type 2's ankle is capped) were already straight (4-7 deg); 0.025 did not change that
-    (striker alone, /work/su/s2/approach2.py: 24 of 30 scored instead of 26) and 0.05 sent the ball 11 deg off
+    (striker alone: 24 of 30 scored instead of 26) and 0.05 sent the ball 11 deg off
     after 12 s."""
     push_lateral_m: float = 0.12
     """Pushing goes on while the ball lies within this of the robot's walking line (ego left) [m]..."""

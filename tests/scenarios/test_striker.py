@@ -49,8 +49,8 @@ def test_the_kick_off_is_played_within_8_s():
     """3 v 3 against robots that only stand, our kick-off: the ball leaves the centre within 8 s of the
     kick-off (it waited out the 15 s before issue 15) and nobody touched it twice. The taker, unum 2, is type
     2: before its ankle pitch was capped at type 0's speed (``agent.motion.controller``) this kick grazed the
-    ball (0.24 m), now 0.77 m. Over kick-off seeds 0-7 (/work/su/kickoff.py) the ball lies 2.70 m out 3 s after
-    PlayOn on average (2.88 m before): the set-piece window still lets some kicks graze it (issue 15)."""
+    ball (0.24 m), now 0.77 m. Over kick-off seeds 0-7 (a measurement script, not kept) the ball lies 2.70 m out 3 s
+    after PlayOn on average (2.88 m before): the set-piece window still lets some kicks graze it (issue 15)."""
     engine, host, _ = _our_kick_off_against_standing_robots(8.0)
     host.run(50)
     x, y, _ = engine.world.ball_position()
