@@ -23,7 +23,8 @@ Playback (REFERENCE §6, thesis controller):
   the controller predicts that angle (``delay_compensation``).
 * Blending: a motion's first keyframe lasts at least as long as its largest joint move takes at
   ``blend_speed_rad_s``, so a motion started from a far pose gets there without a jolt; a motion with a
-  ``blend_speed_rad_s`` constant uses its own bound (the stand-ups, which start lying still).
+  ``blend_speed_rad_s`` constant uses its own bound (the stand-ups, which start lying still). Head joints
+  that the request steers (``head_deg``) do not count.
 * Turn gain (REFERENCE §7.3): a gain g scales a motion's targets as base + g·(target − base), where base
   is the library's gain base motion (same keyframe count) or the motion's first keyframe.
 * Slowdown (REFERENCE §7.2): after a stop request, the phases of a walk (a motion with a ``speed_m_s``
@@ -408,8 +409,12 @@ class MotionController:
         cycles = max(1, round(playback.time_s / CYCLE_S) - round(start / CYCLE_S))
         if playback.first:
             playback.first = False
-            largest = max((abs(a - current[w]) for w, a in keyframe.targets.items() if a is not None and w in current),
-                          default=0.0)
+            # The head follows the request's ``head_deg`` when it has one, whatever the keyframe says: it does
+            # not stretch the blend then. Why: turn motions list the head at 0 deg; a dribbler looking 60 deg
+            # aside at the ball spent 0.36 s of each 0.78 s turn motion blending a head it never moved there.
+            steered = HEAD_JOINTS if self._request.head_deg is not None else ()
+            largest = max((abs(a - current[w]) for w, a in keyframe.targets.items()
+                           if a is not None and w in current and w not in steered), default=0.0)
             speed = float(playback.motion.constants.get(BLEND_SPEED_CONSTANT, self.config.blend_speed_rad_s))
             blend_cycles = math.ceil(largest / speed / CYCLE_S - 1e-9)
             if blend_cycles > cycles:

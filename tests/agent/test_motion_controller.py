@@ -258,6 +258,20 @@ def test_a_motion_s_blend_speed_constant_replaces_the_controller_s_bound():
         assert names.count("a") == math.ceil(math.radians(60.0) / speed / DT), motion.name
 
 
+def test_a_head_the_request_steers_does_not_stretch_the_blend():
+    # A turn motion lists the head at 0 deg; a dribbler looking 60 deg aside at the ball keeps looking there
+    # (the request's head_deg wins), so only the legs' move sets the first keyframe's length.
+    motion = xml_motion("turn", [phase("a", 20, {"llj3": 6.0, "hj1": 0.0})])
+    angles = {"llj3": 0.0, "hj1": 60.0}
+    for head_deg, cycles in (((60.0, 0.0), math.ceil(math.radians(6.0) / 1.0 / DT)),
+                             (None, math.ceil(math.radians(60.0) / 1.0 / DT))):
+        controller = MotionController(MotionLibrary({"turn": motion}), config=ControllerConfig(blend_speed_rad_s=1.0))
+        request = MotionRequest("turn", head_deg=head_deg)
+        names = play(controller, request, 1, angles) + play(controller, MotionRequest(None, head_deg=head_deg), 99,
+                                                             angles)
+        assert names.count("a") == cycles, head_deg
+
+
 def test_unknown_motion_names_the_known_ones():
     controller = controller_for(xml_motion("walk", [phase("a", 20, {})]))
     with pytest.raises(KeyError, match="walk"):
