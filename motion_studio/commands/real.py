@@ -100,6 +100,61 @@ def skills(
         json_path.write_text(json.dumps(results, indent=1))
 
 
+@real_app.command("joint-slack")
+def joint_slack(
+    cases: Annotated[list[str], typer.Argument(help="skill cases to run on the real server (see real skills --list)")],
+    bodies: Annotated[str, typer.Option(help="comma-separated SimSpark body names to measure")] = "rfoot,lfoot",
+    out: Annotated[Path, typer.Option(help="server and monitor logs")] = Path("out/real_joint_slack"),
+    json_path: Annotated[Optional[Path], typer.Option("--json", help="also write the figures as JSON")] = None,
+    plot_path: Annotated[Optional[Path], typer.Option(
+        "--plot", help="also plot the z residual over time (PNG)")] = None,
+    motions: Annotated[str, typer.Option(
+        help="git revision of the motions to play (default HEAD); 'worktree' = the files as they are now")] = "HEAD",
+    robot_type: Annotated[int, typer.Option("--type", min=0, max=4, help="robot type (0-4)")] = 0,
+    real_server_dir: ServerDir = None,
+) -> None:
+    """How far the real robot's bodies lie from where its joint angles put them (ODE's joints give under load;
+    ours never do): per case and body, our forward kinematics of the monitor's torso and the HJ angles minus the
+    monitor's body [mm]."""
+    from dataclasses import replace
+
+    from motion_studio.realserver import joint_slack as slack
+    from motion_studio.realserver.cases import CASES, UNUM, motion_source
+    from motion_studio.realserver.errors import RealServerError
+    from motion_studio.realserver.skill_runs import run_real
+    from sim.replay import read_log
+
+    unknown = [name for name in cases if name not in CASES]
+    if unknown:
+        _fail("joint-slack", f"unknown case(s) {', '.join(unknown)}; known: {', '.join(CASES)}")
+    names = [name.strip() for name in bodies.split(",") if name.strip()]
+    scripts = _into_netns("joint-slack", real_server_dir)
+    try:
+        source = motion_source(motions, Path(tempfile.mkdtemp(prefix="motions_")))
+    except subprocess.CalledProcessError:
+        _fail("joint-slack", f"unknown git revision {motions!r} (--motions)")
+    out.mkdir(parents=True, exist_ok=True)
+    results = {}
+    for name in cases:
+        case = replace(CASES[name], robot_type=robot_type)
+        typer.echo(f"{name}: running on the real server ...")
+        try:
+            _, lines = run_real(case, source, scripts, out)
+            angles = slack.hinge_angles_by_cycle(line["msg"] for line in lines if line["k"] == "recv")
+            results[name] = slack.body_slack(read_log(out / f"monitor_{case.name}.log"), angles, robot_type, names,
+                                             robot=f"left_{UNUM}")
+        except (RealServerError, KeyError) as error:
+            _fail("joint-slack", f"{name}: {error}")
+    typer.echo(slack.table(results))
+    if json_path is not None:
+        json_path.parent.mkdir(parents=True, exist_ok=True)
+        json_path.write_text(json.dumps({"motions": source.revision, "cases": {
+            name: {s.body: s.summary() for s in slacks if len(s.rows)} for name, slacks in results.items()}}, indent=1))
+    if plot_path is not None:
+        slack.plot(results, plot_path)
+        typer.echo(f"plot: {plot_path}")
+
+
 @real_app.command("match")
 def match(
     players: Annotated[int, typer.Option(min=1, max=11, help="players per team, 1-11")] = 3,

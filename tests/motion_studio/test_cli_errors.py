@@ -30,6 +30,7 @@ CASES = [
     (["play", "motions/files/kick.xml", "--start", "upside_down"], ["--start", "back, front"]),
     (["demo", "--players", "0"], ["'--players'", "1 to 11"]),
     (["real", "match", "--players", "0"], ["'--players'", "1 to 11"]),
+    (["real", "joint-slack", "nosuch"], ["unknown case(s) nosuch", "walk_forward"]),
     (["calibrate", "--popsize", "1"], ["'--popsize'", "4 to 64"]),
     (["transfer", "--starts", "0"], ["'--starts'", "1 to 1000"]),
     (["bench", "skills", "--skill", "swim"], ["--skill", "walk, turn, kick, standup"]),
