@@ -26,6 +26,7 @@ from pathlib import Path
 import mujoco
 import numpy as np
 
+from agent.protocol.constants import CYCLE_S
 from agent.protocol.sense import parse_sense
 from kinematics.spec import robot_spec
 from sim.replay import ReplayFrame
@@ -33,8 +34,6 @@ from sim.world import World
 
 #: Bodies measured by default (the monitor reports every body by name; the feet carry the contacts).
 DEFAULT_BODIES = ("rfoot", "lfoot")
-#: Sense message cycles are matched to monitor frames by game time in steps of this [s].
-CYCLE_S = 0.02
 
 
 @dataclass
