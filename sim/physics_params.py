@@ -144,7 +144,11 @@ sessions), benchmarks/bench_sim.py.
   The sizes fit the drift of a velocity-level joint solve: a body turning at w on a lever r leaves its hinge by
   about r w^2 h^2 per step (h = 20 ms), which ERP 0.2 pays back a fifth at a time, so about 5 r w^2 h^2 stays:
   2.5 mm for a leg of 0.2 m swinging at 2.5 rad/s (the walk), 14 mm at 6 rad/s (the strike). An estimate, not
-  fitted.
+  fitted. Tried as a stand-in (a scratch probe, not kept): each foot's collision box lowered along its own -z by
+  c w^2 (w its angular speed against the torso; ``geom_sameframe`` off so that MuJoCo reads ``geom_pos``) with c
+  = 0.2, 0.44 and 0.8 mm per (rad/s)^2 widens the pocket instead (ours 1.0-1.9 m from +0.5 to +1.5 cm): at the
+  strike the real foot also trails its joint angles by about 8 mm, so the slack is a displacement of the whole
+  chain, not of the sole.
   Ball friction 0.1-1.0 and a robot restitution of 0-1 change the pocket's depth, not the pocket (fixture
   real_0.7.3_skill_kick_beyond_8mm, strict xfail). In matches on ours 2 of 8 kick-offs (seeds 0-7) went 1.0-1.3 m.
 * **Body-part friction, fitted on the real lying-on-back stand-up (2026-11-26, issue 12).** SimSpark's robot
