@@ -80,7 +80,8 @@ def body_slack(frames: Iterable[ReplayFrame], angles: dict[int, dict[str, float]
     world = World()
     world.add_robot(1, robot_type)
     model_robot = world.by_key[1]
-    body_ids = {name: mujoco.mj_name2id(world.model, mujoco.mjtObj.mjOBJ_BODY, f"r1_{name}") for name in bodies}
+    body_ids = {name: mujoco.mj_name2id(world.model, mujoco.mjtObj.mjOBJ_BODY, model_robot.prefix + name)
+                for name in bodies}
     missing = [name for name, index in body_ids.items() if index < 0]
     if missing:
         raise KeyError(f"no body {missing[0]!r} in our robot model (known: the SimSpark body names, e.g. rfoot)")
