@@ -12,12 +12,15 @@ import subprocess
 import sys
 import tempfile
 from pathlib import Path
-from typing import Annotated, Optional
+from typing import TYPE_CHECKING, Annotated, Optional
 
 import typer
 
 from motion_studio.cli import app
 from motion_studio.realserver.match_play import MatchSetup
+
+if TYPE_CHECKING:
+    from motion_studio.realserver.cases import MotionSource
 
 real_app = typer.Typer(help="Measure against the real rcssserver3d 0.7.3 (needs it built; never in CI).",
                        no_args_is_help=True)
@@ -48,6 +51,17 @@ def _into_netns(command: str, real_server_dir: Path | None) -> Path:
     return scripts
 
 
+def _motions(command: str, revision: str) -> "MotionSource":
+    """The motions of git ``revision`` (``--motions``), exported to a scratch folder; an unknown revision is a
+    one-line error."""
+    from motion_studio.realserver.cases import motion_source
+
+    try:
+        return motion_source(revision, Path(tempfile.mkdtemp(prefix="motions_")))
+    except subprocess.CalledProcessError:
+        _fail(command, f"unknown git revision {revision!r} (--motions)")
+
+
 @real_app.command("skills")
 def skills(
     cases: Annotated[Optional[list[str]], typer.Argument(help="cases to run (default all; --list shows them)")] = None,
@@ -71,7 +85,7 @@ def skills(
     real_server_dir: ServerDir = None,
 ) -> None:
     """Each skill case on the real server and on ours, measured by ground truth; a table per case."""
-    from motion_studio.realserver.cases import CASES, motion_source, parse_dribble_settings
+    from motion_studio.realserver.cases import CASES, parse_dribble_settings
     from motion_studio.realserver.skill_check import check_skills
 
     try:
@@ -86,10 +100,7 @@ def skills(
     if unknown:
         _fail("skills", f"unknown case(s) {', '.join(unknown)}; known: {', '.join(CASES)}")
     scripts = _into_netns("skills", real_server_dir)
-    try:
-        source = motion_source(motions, Path(tempfile.mkdtemp(prefix="motions_")))
-    except subprocess.CalledProcessError:
-        _fail("skills", f"unknown git revision {motions!r} (--motions)")
+    source = _motions("skills", motions)
     typer.echo(f"motions: {source.revision}")
     if dribble_config:
         typer.echo(f"dribble settings: {', '.join(f'{k}={v:g}' for k, v in dribble_config.items())}")
@@ -119,7 +130,7 @@ def joint_slack(
     from dataclasses import replace
 
     from motion_studio.realserver import joint_slack as slack
-    from motion_studio.realserver.cases import CASES, UNUM, motion_source
+    from motion_studio.realserver.cases import CASES, UNUM
     from motion_studio.realserver.errors import RealServerError
     from motion_studio.realserver.skill_runs import run_real
     from sim.replay import read_log
@@ -129,10 +140,7 @@ def joint_slack(
         _fail("joint-slack", f"unknown case(s) {', '.join(unknown)}; known: {', '.join(CASES)}")
     names = [name.strip() for name in bodies.split(",") if name.strip()]
     scripts = _into_netns("joint-slack", real_server_dir)
-    try:
-        source = motion_source(motions, Path(tempfile.mkdtemp(prefix="motions_")))
-    except subprocess.CalledProcessError:
-        _fail("joint-slack", f"unknown git revision {motions!r} (--motions)")
+    source = _motions("joint-slack", motions)
     out.mkdir(parents=True, exist_ok=True)
     results = {}
     for name in cases:
