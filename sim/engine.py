@@ -568,10 +568,9 @@ class SimEngine:
 
     def robot_body_poses(self) -> list[tuple[str | None, int, int, BodyPoseArrays]]:
         """Per robot in connection order: (side or None, unum or 0, robot type, body name -> (centre [m],
-        row-major 3x3 rotation)), as `sim.world.World.robot_body_poses` but over views of the world's pose
-        arrays, which the self-collision rule gathers for all robots at once."""
-        data = self.world.data
-        positions, rotations = data.xpos, data.xmat   # one view each, shared by every robot
+        row-major 3x3 rotation)), as `sim.world.World.robot_body_poses` but over the world's whole pose arrays
+        (the centres with ODE's joint drift), which the self-collision rule gathers for all robots at once."""
+        positions, rotations = self.world.body_centres(), self.world.data.xmat   # shared by every robot
         return [(robot.side, robot.unum or 0, robot.robot_type, BodyPoseArrays(robot.body_rows, positions, rotations))
                 for robot in self.world.by_key.values()]
 

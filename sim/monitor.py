@@ -250,11 +250,12 @@ class MujocoWorldScene:
             self._model_id = id(model)
             self._ids.clear()
         out = []
+        centres = w.body_centres() if hasattr(w, "body_centres") else data.xpos  # ODE's joint drift included
         for robot in w.by_key.values():  # type: ignore[attr-defined]
             if robot.key not in self._ids:
                 self._ids[robot.key] = {b.name: model.body(robot.prefix + b.name).id for b in robot.spec.bodies}
             out.append((robot.side, robot.unum or 0, robot.robot_type,
-                        BodyPoseArrays(self._ids[robot.key], data.xpos, data.xmat)))
+                        BodyPoseArrays(self._ids[robot.key], centres, data.xmat)))
         return out
 
 

@@ -34,6 +34,7 @@ from kinematics.mjcf import build_robot_mjspec
 from kinematics.spec import RobotSpec, robot_spec
 from sim.effectors import MotorBank
 from sim.field import BALL_MASS_KG, BALL_RADIUS_M, add_static_geometry
+from sim.joint_slack import JointSlack
 from sim.physics_params import PhysicsParams, default_physics_params
 from sim.world_api import RobotState
 from sim.errors import UnknownRobotError, WorldError
@@ -78,6 +79,9 @@ _BALL_BIT = 1 << 29
 _GHOST_BIT = 1 << 28
 _ROBOT_BITS = (1 << MAX_ROBOTS) - 1
 _ALL_BITS = _ROBOT_BITS | _WORLD_BIT | _BALL_BIT | _GHOST_BIT
+#: Bodies whose collision geom has a ball-only twin moved by ODE's joint drift (`sim.joint_slack`): the legs.
+BALL_SIDE_BODIES = ("lthigh", "rthigh", "lshank", "rshank", "lfoot", "rfoot")
+BALL_TWIN_SUFFIX = "_ball"
 # Contact sensor settings (MuJoCo mjtConDataField bits found | force | pos; reduction "netforce").
 _CONTACT_FOUND_FORCE_POS = 1 | 2 | 16
 _CONTACT_NETFORCE = 3
@@ -129,6 +133,9 @@ class World:
         self.data = mujoco.MjData(self.model)
         self.by_key: dict[int, Robot] = {}
         self.motors = MotorBank(self.params)
+        self.joint_slack = JointSlack(self.params.joint_slack_erp) if self.params.joint_slack_erp else None
+        """ODE's joint drift of every robot body, applied to the legs' ball-side geoms (`sim.joint_slack`); None when
+        switched off (``PhysicsParams.joint_slack_erp``)."""
         self.time_s = 0.0
         self.mujoco_wall_s = 0.0
         """Wall time spent inside mujoco.mj_step [s] (for benchmarks)."""
@@ -178,7 +185,7 @@ class World:
         ball = spec.worldbody.add_body(name="ball", pos=[0.0, 0.0, BALL_RADIUS_M])
         ball.add_freejoint(name="ball")
         ball.add_geom(name="ball", type=mujoco.mjtGeom.mjGEOM_SPHERE, size=[BALL_RADIUS_M, 0, 0],
-                      mass=BALL_MASS_KG, contype=_BALL_BIT, conaffinity=_ALL_BITS, condim=p.contact_condim,
+                      mass=BALL_MASS_KG, contype=_BALL_BIT, conaffinity=_WORLD_BIT | _BALL_BIT, condim=p.contact_condim,
                       friction=[p.ball_friction, 0.005, 0.0001], rgba=[1.0, 0.5, 0.0, 1.0], solref=list(p.ball_solref),
                       solimp=list(p.ball_solimp), solmix=1e6,    # the ball's own parameters win every contact
                       priority=p.ball_priority)
@@ -232,9 +239,24 @@ class World:
             template.delete(exclude)
         feet = {sensor.body for sensor in spec.sensors if sensor.kind == "force"}
         for geom in template.geoms:
+            if geom.contype:
+                # MuJoCo filters body pairs first by the OR of their geoms' masks as compiled (the slot bits are
+                # set after, in _apply_collision_bits): the ball's own mask has no robot bit, so the ball bit.
+                geom.conaffinity |= _BALL_BIT
             geom.condim = p.contact_condim
             geom.solref, geom.solimp = list(p.contact_solref), list(p.contact_solimp)
             geom.friction = [p.friction if geom.name in feet else _body_friction(p), 0.005, 0.0001]
+        if p.joint_slack_erp:
+            # The ball meets the legs where ODE's joint drift puts them (sim.joint_slack): a twin of each leg
+            # geom that collides with the ball only, moved by the drift; the originals keep the ground and
+            # the other robots (the real stance foot sinks by its drift, the torso does not rise).
+            for geom in list(template.geoms):
+                if geom.contype and geom.name in BALL_SIDE_BODIES:
+                    template.body(geom.name).add_geom(
+                        name=geom.name + BALL_TWIN_SUFFIX, type=geom.type, size=list(geom.size), pos=list(geom.pos),
+                        quat=list(geom.quat), contype=0, conaffinity=_BALL_BIT, condim=geom.condim, mass=0.0,
+                        friction=list(geom.friction), solref=list(geom.solref), solimp=list(geom.solimp),
+                        group=3)
         for sensor in spec.sensors:
             if sensor.kind == "force":
                 # MuJoCo sums the foot's contacts in C: net force and force-weighted centroid (world frame).
@@ -315,6 +337,10 @@ class World:
             m.dof_damping[robot.root_dof + 3:robot.root_dof + 6] = n_bodies * p.body_angular_drag_nm_s
             self._apply_collision_bits(robot)
         self.motors.bind_model(m)
+        if self.joint_slack is not None:
+            twins = np.array([g for r in self.by_key.values() for g in r.geoms.tolist()
+                              if m.geom(g).name.endswith(BALL_TWIN_SUFFIX)], dtype=np.intp)
+            self.joint_slack.bind(m, [(r.torso_body, r.body_ids) for r in self.by_key.values()], twins)
         self._geom_owner = self.geom_robot.copy()   # the contact table's owners: -2 marks the ball
         self._geom_owner[self.ball_geom] = _BALL_OWNER
         # Joint angles of every robot in sense-message order, in one gather (see sim.perceptors).
@@ -397,11 +423,14 @@ class World:
             bit = 1 << robot.slot
             contype, conaffinity = bit, (_ROBOT_BITS & ~bit) | _WORLD_BIT | _BALL_BIT
         colliders = robot.geoms[m.geom_contype[robot.geoms] != 0]
-        m.geom_contype[colliders] = contype
-        m.geom_conaffinity[colliders] = conaffinity
+        twinned = {m.geom(int(g)).name[:-len(BALL_TWIN_SUFFIX)] for g in robot.geoms
+                   if m.geom(int(g)).name.endswith(BALL_TWIN_SUFFIX)}
         for g in colliders:  # keep the spec in step, so a recompile reproduces the masks
-            geom = self.spec.geom(m.geom(int(g)).name)
-            geom.contype, geom.conaffinity = contype, conaffinity
+            name = m.geom(int(g)).name
+            mask = conaffinity & ~_BALL_BIT if name in twinned else conaffinity
+            m.geom_contype[g], m.geom_conaffinity[g] = contype, mask
+            geom = self.spec.geom(name)
+            geom.contype, geom.conaffinity = contype, mask
 
     def set_team(self, key: int, side: str | None, unum: int | None) -> None:
         """Give a robot its side ("left"/"right") and number after init (None: no team, a ghost)."""
@@ -424,6 +453,8 @@ class World:
         self.data.qvel[robot.root_dof:robot.root_dof + 6] = 0.0
         self.data.qvel[self.motors.dof[self.motors.span(robot.key)]] = 0.0
         self.motors.reset_robot(robot.key)
+        if self.joint_slack is not None:
+            self.joint_slack.forget(self.model, robot.torso_body)
 
     def place_robot(self, key: int, x_m: float, y_m: float, heading_deg: float | None, z_m: float = 0.4) -> None:
         """Place a robot upright (beam, init, referee): heading 0 = facing +x; None keeps the heading."""
@@ -449,6 +480,8 @@ class World:
         self.motors.target[span] = 0.0
         self.motors.frozen_until[span] = -np.inf
         self.motors.reset_robot(key)
+        if self.joint_slack is not None:
+            self.joint_slack.forget(self.model, self.by_key[key].torso_body)
         mujoco.mj_kinematics(self.model, self.data)
         row = list(self.by_key).index(key)
         self.velocity_samples[row] = self.data.qvel[self._root_lin][row]
@@ -505,10 +538,14 @@ class World:
                 self._recover_from_divergence(cycle_start)
             contacts = self._contact_table()
             self._ball_rebound(ball_velocity, contacts)
+        if self.joint_slack is not None:   # the last step's start poses and end velocities (see sim.joint_slack)
+            self.joint_slack.predict(d, self.params.timestep_s)
         self._guard_blow_up(cycle_start, contacts)
         self.time_s += self.params.cycle_s
         self._contacts(contacts)  # from the step's contacts, with the poses they were found at
         mujoco.mj_kinematics(m, d)
+        if self.joint_slack is not None:
+            self.joint_slack.settle(m, d)
         self._poses_stale = False
 
     def _guard_blow_up(self, cycle_start: tuple[np.ndarray, np.ndarray, np.ndarray, float],
@@ -813,11 +850,17 @@ class World:
         body = self.ball_body
         return tuple(self.data.xpos[body].tolist()), tuple(self.data.xmat[body].tolist())  # type: ignore[return-value]
 
+    def body_centres(self) -> np.ndarray:
+        """Every body's centre [m, (nbody, 3)] as SimSpark's monitor would show it: where the joints put it plus
+        ODE's joint drift (`sim.joint_slack`; ``data.xpos`` itself when the drift is off)."""
+        return self.data.xpos if self.joint_slack is None else self.joint_slack.centres(self.data)
+
     def robot_body_poses(self) -> list[tuple[str | None, int, int, dict[str, tuple[tuple[float, ...], tuple[float, ...]]]]]:
         """Per robot in connection order: (side or None, unum or 0, robot type, {SimSpark body name: (centre [m],
-        row-major 3x3 rotation)}); body frames are SimSpark's, so these are the transforms the server sends."""
+        row-major 3x3 rotation)}); body frames are SimSpark's, so these are the transforms the server sends. The
+        centres include ODE's joint drift (`sim.joint_slack`), as the real monitor shows its bodies."""
         out = []
-        xpos, xmat = self.data.xpos, self.data.xmat
+        xpos, xmat = self.body_centres(), self.data.xmat
         for robot in self.by_key.values():
             positions, rotations = xpos[robot.body_ids].tolist(), xmat[robot.body_ids].tolist()
             bodies = {name: (tuple(p), tuple(r)) for name, p, r in zip(robot.body_names, positions, rotations)}

@@ -122,11 +122,13 @@ def joint_slack(
     motions: Annotated[str, typer.Option(
         help="git revision of the motions to play (default HEAD); 'worktree' = the files as they are now")] = "HEAD",
     robot_type: Annotated[int, typer.Option("--type", min=0, max=4, help="robot type (0-4)")] = 0,
+    ours: Annotated[bool, typer.Option(
+        "--ours", help="also play each case on our simulator and measure it the same way (its own table)")] = False,
     real_server_dir: ServerDir = None,
 ) -> None:
-    """How far the real robot's bodies lie from where its joint angles put them (ODE's joints give under load;
-    ours never do): per case and body, our forward kinematics of the monitor's torso and the HJ angles minus the
-    monitor's body [mm]."""
+    """How far the real robot's bodies lie from where its joint angles put them (ODE's joints give under fast
+    rotation; ours emulates it, sim.joint_slack): per case and body, our forward kinematics of the monitor's torso
+    and the HJ angles minus the monitor's body [mm]."""
     from dataclasses import replace
 
     from motion_studio.realserver import joint_slack as slack
@@ -154,10 +156,27 @@ def joint_slack(
         except (RealServerError, KeyError) as error:
             _fail("joint-slack", f"{name}: {error}")
     typer.echo(slack.table(results))
+    ours_results = {}
+    if ours:
+        from motion_studio.realserver.skill_runs import run_sim
+
+        for name in cases:
+            case = replace(CASES[name], robot_type=robot_type)
+            typer.echo(f"{name}: running on our simulator ...")
+            run = run_sim(case, source, record=True)
+            log = out / f"ours_monitor_{case.name}.log"
+            log.write_text("\n".join(run.monitor) + "\n")
+            ours_results[name] = slack.body_slack(read_log(log), slack.hinge_angles_by_cycle(run.senses),
+                                                  robot_type, names, robot=f"left_{UNUM}")
+        typer.echo(slack.table(ours_results, server="ours"))
     if json_path is not None:
         json_path.parent.mkdir(parents=True, exist_ok=True)
-        json_path.write_text(json.dumps({"motions": source.revision, "cases": {
-            name: {s.body: s.summary() for s in slacks if len(s.rows)} for name, slacks in results.items()}}, indent=1))
+        figures = {"motions": source.revision, "cases": {
+            name: {s.body: s.summary() for s in slacks if len(s.rows)} for name, slacks in results.items()}}
+        if ours:
+            figures["ours"] = {name: {s.body: s.summary() for s in slacks if len(s.rows)}
+                               for name, slacks in ours_results.items()}
+        json_path.write_text(json.dumps(figures, indent=1))
     if plot_path is not None:
         slack.plot(results, plot_path)
         typer.echo(f"plot: {plot_path}")

@@ -108,10 +108,11 @@ def body_slack(frames: Iterable[ReplayFrame], angles: dict[int, dict[str, float]
     return [BodySlack(name, np.array(rows[name], dtype=float).reshape(-1, 4)) for name in bodies]
 
 
-def table(results: dict[str, list[BodySlack]]) -> str:
-    """One line per case and body: frames, |residual| median / p90 / max and the z residual [mm]."""
+def table(results: dict[str, list[BodySlack]], server: str = "real") -> str:
+    """One line per case and body: frames, |residual| median / p90 / max and the z residual [mm]; ``server``
+    names whose monitor and HJ angles were measured."""
     lines = [f"{'case':18s} {'body':8s} {'frames':>6s} {'median':>7s} {'p90':>6s} {'max':>6s} {'z med':>6s} "
-             f"{'z min':>6s} {'z max':>6s}   [mm, our FK of the real torso + HJ minus the real body]"]
+             f"{'z min':>6s} {'z max':>6s}   [mm, our FK of the {server} torso + HJ minus the {server} body]"]
     for case, slacks in results.items():
         for slack in slacks:
             if not len(slack.rows):

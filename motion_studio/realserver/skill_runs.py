@@ -52,6 +52,11 @@ class Run:
     modes: list[str | None] = field(default_factory=list)
     """The playing skill's ``mode`` per skill-phase cycle (a dribble's push, turn, ...; None for a skill without
     one): where a skill's time goes, on both servers. Empty for an open-loop replay."""
+    monitor: list[str] = field(default_factory=list)
+    """Our simulator's run with ``record=True``: our monitor's full state after every cycle (the real harness's
+    monitor log, one line per cycle)."""
+    senses: list[bytes] = field(default_factory=list)
+    """... and every sense message the agent got, in order."""
 
 
 def record_mode(run: Run, inner: SkillBehavior) -> None:
@@ -71,16 +76,20 @@ def record_completions(run: Run, inner: SkillBehavior, done: dict[str, int], ind
             done[name] = count
 
 
-def run_sim(case: Case, motions: MotionSource) -> Run:
+def run_sim(case: Case, motions: MotionSource, record: bool = False) -> Run:
     """The session on our simulator: in-process agent, the full referee (PlayOn rules, self-collision
-    fouls) and the same trainer commands at the same cycle as on the real server."""
+    fouls) and the same trainer commands at the same cycle as on the real server. ``record`` keeps our
+    monitor's full state after every cycle and the sense messages (``Run.monitor``, ``Run.senses``): the inputs
+    of the measures that read the real server's logs (``motion-studio real joint-slack --ours``)."""
     from sim.engine import SimEngine
     from sim.inprocess import InProcessHost
+    from sim.monitor import MonitorStream, MujocoWorldScene, snapshot_of
     from sim.rules.self_collision import colliding_pairs
     from sim.rules.trainer import apply_trainer_message
 
     engine = SimEngine(seed=0)
-    host = InProcessHost(engine)
+    host = InProcessHost(engine, record=record)
+    stream, scene = MonitorStream(engine.referee.config), MujocoWorldScene(engine.world)
     inner, fall_behavior = behavior(case, motions)
     agent = Agent(AgentConfig(TEAM, UNUM, case.robot_type, say=False), fall_behavior)
     run = Run("sim", [])
@@ -105,6 +114,8 @@ def run_sim(case: Case, motions: MotionSource) -> Run:
     while agent.world.game.cycles < skill_cycle + case.cycles:
         seen = agent.world.game.cycles
         host.run(1)
+        if record:
+            run.monitor.append(stream.message(snapshot_of(scene, engine.referee), full=True))
         if agent.world.game.cycles == seen:
             continue
         index = seen  # the message just answered; the world now holds the state message index + 1 reports
@@ -127,6 +138,8 @@ def run_sim(case: Case, motions: MotionSource) -> Run:
             done = dict(inner.motion.completed)
     run.blow_ups = world.divergences - blow_ups
     run.fouls = len(getattr(engine.referee, "fouls", []))
+    if record:
+        run.senses = [payload for _, _, payload in host.stats.transcript]
     return run
 
 

@@ -63,13 +63,22 @@ def _play_until_scored(engine, host, within_s: float) -> None:
     assert engine.referee.score_left == 1, engine.world.ball_position()
 
 
-@pytest.mark.parametrize("robot_m", [(13.6, 0.3, 0.0), (13.5, -0.5, 20.0)])
-def test_a_ball_at_a_standing_keepers_feet_is_played_past_it_within_20_s(robot_m):
-    """The ball 0.16 m in front of the keeper, our striker about 1.1 m behind it: it scores (3 starts x seeds
-    0-1: 6 of 6 within 16 s). Before ``DribbleConfig.play_through_m`` none of the 6 scored in 20 s: the robot
-    side-stepped away from the keeper, stepped back to the ball, and so on (for up to 90 s in matches)."""
-    engine, host = _striker_against_a_standing_keeper(0, robot_m, (14.7, -0.05))
-    _play_until_scored(engine, host, 20.0)
+def test_a_ball_at_a_standing_keepers_feet_is_played_past_it_within_20_s():
+    """The ball 0.16 m in front of the keeper, our striker about 1.1 m behind it, 3 starts x seeds 0-3: at least 9
+    of the 12 score within 20 s (measured 10 of 12, with ODE's joint drift on the legs and without; the misses
+    push the ball out of the goal mouth off the keeper's legs). Before ``DribbleConfig.play_through_m`` none of 6
+    scored in 20 s: the robot side-stepped away from the keeper, stepped back to the ball, and so on (for up to 90 s
+    in matches)."""
+    scored = 0
+    for seed in range(4):
+        for robot_m in [(13.6, 0.3, 0.0), (13.5, -0.5, 20.0), (13.55, 0.0, 0.0)]:
+            engine, host = _striker_against_a_standing_keeper(seed, robot_m, (14.7, -0.05))
+            for _ in range(round(20.0 / CYCLE_S)):
+                host.run(1)
+                if engine.referee.score_left > 0:
+                    scored += 1
+                    break
+    assert scored >= 9, scored
 
 
 @pytest.mark.parametrize("robot_m", [(14.6, -0.2, -20.0), (14.55, 0.35, -40.0)])
