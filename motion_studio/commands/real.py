@@ -178,7 +178,7 @@ def joint_slack(
                                for name, slacks in ours_results.items()}
         json_path.write_text(json.dumps(figures, indent=1))
     if plot_path is not None:
-        slack.plot(results, plot_path)
+        slack.plot(results, plot_path, ours_results or None)
         typer.echo(f"plot: {plot_path}")
 
 

@@ -124,19 +124,26 @@ def table(results: dict[str, list[BodySlack]], server: str = "real") -> str:
     return "\n".join(lines)
 
 
-def plot(results: dict[str, list[BodySlack]], path: Path) -> None:
-    """The z residual of each body over game time, one panel per case (PNG)."""
+def plot(results: dict[str, list[BodySlack]], path: Path,
+         ours: dict[str, list[BodySlack]] | None = None) -> None:
+    """The z residual of each body over game time, one panel per case (PNG); ``ours`` (the same cases on our
+    simulator) dashed in the same colours."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
     fig, axes = plt.subplots(len(results), 1, figsize=(9, 2.6 * len(results)), squeeze=False)
     for axis, (case, slacks) in zip(axes[:, 0], results.items()):
+        mine = {slack.body: slack for slack in (ours or {}).get(case, [])}
         for slack in slacks:
             if len(slack.rows):
-                axis.plot(slack.rows[:, 0], slack.rows[:, 3], label=slack.body, linewidth=0.9)
+                line, = axis.plot(slack.rows[:, 0], slack.rows[:, 3], label=f"{slack.body} real", linewidth=0.9)
+                other = mine.get(slack.body)
+                if other is not None and len(other.rows):
+                    axis.plot(other.rows[:, 0], other.rows[:, 3], "--", color=line.get_color(),
+                              label=f"{slack.body} ours", linewidth=0.9)
         axis.axhline(0.0, color="grey", linewidth=0.5)
-        axis.set_title(f"{case}: body below its joint angles (FK - real, z)", fontsize=9)
+        axis.set_title(f"{case}: body below its joint angles (FK - monitor, z)", fontsize=9)
         axis.set_ylabel("mm")
         axis.legend(fontsize=8)
     axes[-1, 0].set_xlabel("game time [s]")

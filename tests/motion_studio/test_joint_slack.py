@@ -13,7 +13,7 @@ import numpy as np
 
 from agent.agent import Agent, AgentConfig
 from motion_studio.realserver.cases import CASES, MotionSource, behavior
-from motion_studio.realserver.joint_slack import body_slack, hinge_angles_by_cycle, table
+from motion_studio.realserver.joint_slack import body_slack, hinge_angles_by_cycle, plot, table
 from motion_studio.realserver.skill_runs import run_sim
 from agent.protocol.constants import CYCLE_S
 from sim.physics_params import PhysicsParams, default_physics_params
@@ -115,6 +115,8 @@ def test_the_kicking_leg_drifts_as_on_the_real_server_up_to_the_strike(tmp_path)
             mine = by_time[round(t / CYCLE_S)]
             assert np.allclose(mine, residual, atol=1.5), (real_body.body, t, residual, mine)
     assert max(row[3] for row in ours[0].rows.tolist()) > 12.0
+    plot({"kick": real}, tmp_path / "slack.png", {"kick": ours})   # real solid, ours dashed
+    assert (tmp_path / "slack.png").stat().st_size > 10_000
 
 
 def _kick_on_ours() -> tuple[str, dict]:

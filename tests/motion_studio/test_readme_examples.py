@@ -63,7 +63,7 @@ HOW = {
     "real skills kick_1m kick_2m kick_3m kick_4m": PARSE,
     "real skills kick_lineup_45cm kick_lineup_50cm kick_lineup_55cm": PARSE,
     "real skills dribble": PARSE,
-    "real joint-slack walk_forward kick --plot out/slack.png": PARSE,
+    "real joint-slack walk_forward kick --ours --plot out/slack.png": PARSE,
     "real match --players 3 --duration 120": PARSE,
     "real trace crouch out/crouch.jsonl.gz": PARSE,
     "calibrate": PARSE,
