@@ -38,6 +38,8 @@ ODE_WORLD_ERP = 0.2
 #: body's drift starts again from zero [m]. ODE's per-step error at the fastest joint speed (6.14 rad/s on a
 #: 0.3 m lever) is about 2 mm.
 JUMP_M = 0.02
+# Index orders for a cross product without numpy.cross's overhead on small arrays.
+_Y_Z_X, _Z_X_Y = np.array([1, 2, 0]), np.array([2, 0, 1])
 
 
 class JointSlack:
@@ -45,8 +47,8 @@ class JointSlack:
     collision geoms; see the module docstring.
 
     Call `bind` after each model (re)compile, `predict` right after the cycle's last ``mj_step`` (poses and
-    ``cdof`` are the step's start, ``qvel`` its end), `settle` after the poses are brought to the step's end
-    (``mj_kinematics``). `forget` zeroes one robot's drift (beams, restored states).
+    ``cdof`` are the step's start, ``qvel`` its end; it overwrites ``cvel``), `settle` after the poses are brought
+    to the step's end (``mj_kinematics``). `forget` zeroes one robot's drift (beams, restored states).
     """
 
     def __init__(self, erp: float = ODE_WORLD_ERP) -> None:
@@ -59,34 +61,15 @@ class JointSlack:
 
     def bind(self, model: mujoco.MjModel, robot_bodies: list[tuple[int, np.ndarray]], geoms: np.ndarray) -> None:
         """Index the tracked bodies of each robot: (torso body id, ids of all its bodies) per robot, and the geoms
-        moved by their body's drift.
-
-        The kinematic chain of a body is every dof from the torso's free joint down to the body's own hinge;
-        ``cdof`` rows of the chain times ``qvel`` give the body's spatial velocity."""
-        bodies, chains, roots, owners = [], [], [], []
+        moved by their body's drift."""
+        bodies, roots, owners = [], [], []
         for torso, ids in robot_bodies:
             for body in ids.tolist():
-                if body == torso:
-                    continue
-                chain: list[int] = []
-                b = body
-                while b != 0:
-                    start, count = int(model.body_dofadr[b]), int(model.body_dofnum[b])
-                    chain.extend(range(start, start + count))
-                    if b == torso:
-                        break
-                    b = int(model.body_parentid[b])
-                bodies.append(body)
-                chains.append(chain)
-                roots.append(int(model.body_rootid[body]))
-                owners.append(torso)
-        width = max((len(c) for c in chains), default=1)
+                if body != torso:
+                    bodies.append(body)
+                    roots.append(int(model.body_rootid[body]))
+                    owners.append(torso)
         self.bodies = np.array(bodies, dtype=np.intp)
-        self._chain = np.zeros((len(bodies), width), dtype=np.intp)
-        self._mask = np.zeros((len(bodies), width))
-        for row, chain in enumerate(chains):
-            self._chain[row, :len(chain)] = chain
-            self._mask[row, :len(chain)] = 1.0
         self._roots = np.array(roots, dtype=np.intp)
         self._owner_roots = np.array(owners, dtype=np.intp)
         self.drift_m = np.zeros((len(bodies), 3))
@@ -100,16 +83,18 @@ class JointSlack:
         self._nominal = model.geom_pos[self._geoms].copy()
         model.geom_sameframe[self._geoms] = 0
 
-    def predict(self, data: mujoco.MjData, timestep_s: float) -> None:
-        """Where ODE's straight-line update would put each body: its start pose plus h times its velocity
-        (the start's Jacobian, the end's joint velocities)."""
+    def predict(self, model: mujoco.MjModel, data: mujoco.MjData, timestep_s: float) -> None:
+        """Where ODE's straight-line update would put each body: its start pose plus h times its velocity (the
+        start's Jacobian, the end's joint velocities: ``mj_comVel`` from the step's ``cdof`` and the new ``qvel``;
+        nothing reads ``cvel`` again before the next step recomputes it)."""
         if self.bodies.size == 0:
             return
-        qvel = data.qvel[self._chain] * self._mask
-        spatial = np.einsum("nl,nlk->nk", qvel, data.cdof[self._chain])   # [angular, linear] at the tree's com
+        mujoco.mj_comVel(model, data)
+        spatial = data.cvel[self.bodies]                  # [angular, linear] at the tree's centre of mass
         position = data.xpos[self.bodies]
         lever = position - data.subtree_com[self._roots]
-        linear = spatial[:, 3:] + np.cross(spatial[:, :3], lever)
+        w, r = spatial[:, :3], lever
+        linear = spatial[:, 3:] + w[:, _Y_Z_X] * r[:, _Z_X_Y] - w[:, _Z_X_Y] * r[:, _Y_Z_X]   # + w x r
         self._ahead = position + timestep_s * linear
 
     def settle(self, model: mujoco.MjModel, data: mujoco.MjData) -> None:
@@ -117,15 +102,17 @@ class JointSlack:
         if self.bodies.size == 0:
             return
         error = self._ahead - data.xpos[self.bodies]
-        jumped = np.einsum("ij,ij->i", error, error) > JUMP_M * JUMP_M
+        jumped = (error * error).sum(axis=1) > JUMP_M * JUMP_M
         if jumped.any():
             error[jumped] = 0.0
             self.drift_m[jumped] = 0.0
         self.drift_m *= 1.0 - self.erp
         self.drift_m += error
-        rotation = data.xmat[self.bodies].reshape(-1, 3, 3)
-        local = np.einsum("nji,nj->ni", rotation, self.drift_m)   # Rᵀ d: the drift in the body's frame
-        model.geom_pos[self._geoms] = self._nominal + local[self._geom_rows]
+        if self._geoms.size:
+            rows = self._geom_rows
+            rotation = data.xmat[self.bodies[rows]].reshape(-1, 3, 3)
+            local = (self.drift_m[rows][:, None, :] @ rotation)[:, 0]   # dᵀ R = (Rᵀ d)ᵀ: the body's frame
+            model.geom_pos[self._geoms] = self._nominal + local
 
     def forget(self, model: mujoco.MjModel, torso_body: int) -> None:
         """Zero the drift of one robot's bodies (it was beamed or its state restored)."""

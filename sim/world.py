@@ -134,8 +134,8 @@ class World:
         self.by_key: dict[int, Robot] = {}
         self.motors = MotorBank(self.params)
         self.joint_slack = JointSlack(self.params.joint_slack_erp) if self.params.joint_slack_erp else None
-        """ODE's joint drift of every robot body, applied to the legs' ball-side geoms (`sim.joint_slack`); None when
-        switched off (``PhysicsParams.joint_slack_erp``)."""
+        """ODE's joint drift of the legs, applied to their ball-side geoms (`sim.joint_slack`); None when switched
+        off (``PhysicsParams.joint_slack_erp``)."""
         self.time_s = 0.0
         self.mujoco_wall_s = 0.0
         """Wall time spent inside mujoco.mj_step [s] (for benchmarks)."""
@@ -338,9 +338,13 @@ class World:
             self._apply_collision_bits(robot)
         self.motors.bind_model(m)
         if self.joint_slack is not None:
+            # The legs only: they meet the ball (a body's drift depends on its own motion against the torso alone,
+            # so the others need not be followed; the monitor shows them where their joints put them).
             twins = np.array([g for r in self.by_key.values() for g in r.geoms.tolist()
                               if m.geom(g).name.endswith(BALL_TWIN_SUFFIX)], dtype=np.intp)
-            self.joint_slack.bind(m, [(r.torso_body, r.body_ids) for r in self.by_key.values()], twins)
+            legs = [(r.torso_body, np.array([r.body_rows[name] for name in BALL_SIDE_BODIES if name in r.body_rows]))
+                    for r in self.by_key.values()]
+            self.joint_slack.bind(m, legs, twins)
         self._geom_owner = self.geom_robot.copy()   # the contact table's owners: -2 marks the ball
         self._geom_owner[self.ball_geom] = _BALL_OWNER
         # Joint angles of every robot in sense-message order, in one gather (see sim.perceptors).
@@ -539,7 +543,7 @@ class World:
             contacts = self._contact_table()
             self._ball_rebound(ball_velocity, contacts)
         if self.joint_slack is not None:   # the last step's start poses and end velocities (see sim.joint_slack)
-            self.joint_slack.predict(d, self.params.timestep_s)
+            self.joint_slack.predict(m, d, self.params.timestep_s)
         self._guard_blow_up(cycle_start, contacts)
         self.time_s += self.params.cycle_s
         self._contacts(contacts)  # from the step's contacts, with the poses they were found at
