@@ -47,9 +47,12 @@ class KickConfig:
     to one; the smallest turn motion turns 2°)."""
     fine_heading_tol_deg: float = 3.0
     """... and this one while a fine kick step is still allowed (see ``fine_steps_within_s``) [deg]."""
-    forward_min_m: float = -0.01
-    """Kick window along the kick line: the ball at least this far beyond its spot [m] (nearer, the stance
-    toes reach under the ball)..."""
+    forward_min_m: float = 0.004
+    """Kick window along the kick line: the ball at least this far beyond its spot [m]. The kick has two regimes
+    along its line, on both servers (``python -m motion_studio.realserver.kick_check kick --offsets-cm=-1,...,3``,
+    2026-11-28): on the real server 3.2-3.3 m at -0.6 deg from up to 2.5 mm short of the spot, 4.0-4.4 m at
+    -8.5 deg from 1 mm short to 3 cm beyond; on ours the same boundary with a 3 mm pocket on it (1.2-2.3 m). From
+    4 mm beyond, both kick in the far regime (the window was -1 cm before: on the boundary)..."""
     forward_max_m: float = 0.015
     """... and at most this far [m] (the walk-in aims at the window's middle; the kick flies 2.6-3.4 m
     from within 1 cm of its spot, 1.9-2.6 m from 1-5 cm beyond)."""
