@@ -35,7 +35,8 @@ from sim.perceptors import wire_joint_order
 from sim.physics_params import PhysicsParams
 from sim.rules.self_collision import BodyPoseArrays
 from sim.vision import CALIBRATION_ERROR_M, Observer, PlayerParts, SeeWriter, VisionConfig, observe, see
-from sim.world import VISIBLE_PARTS, World, row_index
+from sim.rows import row_index
+from sim.world import VISIBLE_PARTS, World
 
 logger = logging.getLogger(__name__)
 

@@ -32,6 +32,8 @@ from __future__ import annotations
 import mujoco
 import numpy as np
 
+from sim.rows import row_index
+
 #: ODE's default world ERP, which SimSpark keeps (spark/plugin/odeimps/odeworld.cpp sets it only on request).
 ODE_WORLD_ERP = 0.2
 #: A larger error in one step is not a drift but a jump (a beam, a state restored by the blow-up guard): that
@@ -82,6 +84,11 @@ class JointSlack:
         self._geom_rows = np.array([row_of[int(model.geom_bodyid[g])] for g in geoms], dtype=np.intp)
         self._nominal = model.geom_pos[self._geoms].copy()
         model.geom_sameframe[self._geoms] = 0
+        # Flat indices of the rows read every cycle (``sim.rows.row_index``).
+        self._cvel_rows, self._xpos_rows = row_index(self.bodies, 6), row_index(self.bodies, 3)
+        self._com_rows = row_index(self._roots, 3)
+        self._geom_xmat_rows = row_index(self.bodies[self._geom_rows], 9)
+        self._one_geom_per_body = bool(np.array_equal(self._geom_rows, np.arange(len(bodies))))
 
     def predict(self, model: mujoco.MjModel, data: mujoco.MjData, timestep_s: float) -> None:
         """Where ODE's straight-line update would put each body: its start pose plus h times its velocity (the
@@ -90,28 +97,28 @@ class JointSlack:
         if self.bodies.size == 0:
             return
         mujoco.mj_comVel(model, data)
-        spatial = data.cvel[self.bodies]                  # [angular, linear] at the tree's centre of mass
-        position = data.xpos[self.bodies]
-        lever = position - data.subtree_com[self._roots]
-        w, r = spatial[:, :3], lever
-        linear = spatial[:, 3:] + w[:, _Y_Z_X] * r[:, _Z_X_Y] - w[:, _Z_X_Y] * r[:, _Y_Z_X]   # + w x r
+        spatial = data.cvel.reshape(-1).take(self._cvel_rows).reshape(-1, 6)   # [angular, linear] at the tree's com
+        position = data.xpos.reshape(-1).take(self._xpos_rows).reshape(-1, 3)
+        lever = position - data.subtree_com.reshape(-1).take(self._com_rows).reshape(-1, 3)
+        w = spatial[:, :3]
+        linear = spatial[:, 3:] + w[:, _Y_Z_X] * lever[:, _Z_X_Y] - w[:, _Z_X_Y] * lever[:, _Y_Z_X]   # + w x r
         self._ahead = position + timestep_s * linear
 
     def settle(self, model: mujoco.MjModel, data: mujoco.MjData) -> None:
         """Add this step's chord error to the drift, take back ERP of it, move the geoms by what stays."""
         if self.bodies.size == 0:
             return
-        error = self._ahead - data.xpos[self.bodies]
-        jumped = (error * error).sum(axis=1) > JUMP_M * JUMP_M
-        if jumped.any():
+        error = self._ahead - data.xpos.reshape(-1).take(self._xpos_rows).reshape(-1, 3)
+        if np.abs(error).max() > JUMP_M:   # rare: a beam or a restored state
+            jumped = (error * error).sum(axis=1) > JUMP_M * JUMP_M
             error[jumped] = 0.0
             self.drift_m[jumped] = 0.0
         self.drift_m *= 1.0 - self.erp
         self.drift_m += error
         if self._geoms.size:
-            rows = self._geom_rows
-            rotation = data.xmat[self.bodies[rows]].reshape(-1, 3, 3)
-            local = (self.drift_m[rows][:, None, :] @ rotation)[:, 0]   # dᵀ R = (Rᵀ d)ᵀ: the body's frame
+            rotation = data.xmat.reshape(-1).take(self._geom_xmat_rows).reshape(-1, 3, 3)
+            drift = self.drift_m if self._one_geom_per_body else self.drift_m[self._geom_rows]
+            local = (drift[:, None, :] @ rotation)[:, 0]   # dᵀ R = (Rᵀ d)ᵀ: the drift in the body's frame
             model.geom_pos[self._geoms] = self._nominal + local
 
     def forget(self, model: mujoco.MjModel, torso_body: int) -> None:

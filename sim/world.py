@@ -35,6 +35,7 @@ from kinematics.spec import RobotSpec, robot_spec
 from sim.effectors import MotorBank
 from sim.field import BALL_MASS_KG, BALL_RADIUS_M, add_static_geometry
 from sim.joint_slack import JointSlack
+from sim.rows import row_index
 from sim.physics_params import PhysicsParams, default_physics_params
 from sim.world_api import RobotState
 from sim.errors import UnknownRobotError, WorldError
@@ -902,16 +903,6 @@ class World:
         names = [j.effector for j in robot.spec.joints]
         index = np.array([names.index(e) for e in effectors if e in names], dtype=np.intp)
         self.motors.freeze(robot.key, index, self.time_s)
-
-
-def row_index(rows: np.ndarray, width: int) -> np.ndarray:
-    """Flat indices of whole rows of an (n, ``width``) array, for gathering them from its flat view.
-
-    Why: numpy's row gather of a 2-D array (``xmat[bodies]``) costs ~1.8 us for a few rows, a 1-D gather by
-    these indices and a reshape ~0.3 us, for the same values in the same layout; the world gathers pose rows
-    of MuJoCo's arrays several times a cycle.
-    """
-    return (np.asarray(rows, dtype=np.intp)[:, None] * width + np.arange(width)).ravel()
 
 
 def _robot_state(team: str | None, unum: int | None, robot_type: int, torso_pos_m: tuple[float, ...],
