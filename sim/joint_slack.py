@@ -10,8 +10,8 @@ hang 3.3-3.5 mm (median) below where the robot's own joint angles put them, 18.6
 separate, so a foot swinging down meets the ball and the ground where the joint angles say, millimetres
 higher than the real one (see ``sim.physics_params``, "Joints give").
 
-Model, per robot body b except the torso (whose free joint both engines integrate in a straight line), per
-cycle of one 20 ms step:
+Model, per tracked body b (any but the torso, whose free joint both engines integrate in a straight line; the
+world tracks the legs), per cycle of one 20 ms step:
 
     a_b = p_b(q_k) + h · J_b(q_k) q̇_{k+1}     where ODE's straight-line update puts the body
     e_b = a_b − p_b(q_{k+1})                    the chord error of this step (MuJoCo: on the arc)
@@ -45,8 +45,8 @@ _Y_Z_X, _Z_X_Y = np.array([1, 2, 0]), np.array([2, 0, 1])
 
 
 class JointSlack:
-    """The drift of every robot body (but the torso) from where its joint angles put it, applied to its
-    collision geoms; see the module docstring.
+    """The drift of the tracked bodies from where their joint angles put them, applied to the geoms given to
+    `bind`; see the module docstring.
 
     Call `bind` after each model (re)compile, `predict` right after the cycle's last ``mj_step`` (poses and
     ``cdof`` are the step's start, ``qvel`` its end; it overwrites ``cvel``), `settle` after the poses are brought
