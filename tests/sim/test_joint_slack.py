@@ -71,3 +71,17 @@ def test_switched_off_the_legs_have_no_twins_and_the_ball_meets_them_directly():
     mujoco.mj_forward(world.model, world.data)
     assert "r1_rfoot" in _ball_contacts(world)
     assert world.body_centres() is world.data.xpos
+
+
+def test_the_rigid_joints_candidate_switches_the_drift_off():
+    """``NAO3D_PHYSICS_FILE=sim/physics_candidates/rigid_joints.toml`` gives MuJoCo's own joints back (no twins, the
+    monitor's centres where the joints put them), to see what the drift changes."""
+    from pathlib import Path
+
+    from sim.physics_params import load_physics_file
+
+    candidate = Path(__file__).parents[2] / "sim" / "physics_candidates" / "rigid_joints.toml"
+    world = World(default_physics_params(**load_physics_file(candidate)))
+    world.add_robot(1, 0)
+    assert world.joint_slack is None
+    assert not any(world.model.geom(g).name.endswith(BALL_TWIN_SUFFIX) for g in range(world.model.ngeom))
