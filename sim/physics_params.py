@@ -159,6 +159,7 @@ sessions), benchmarks/bench_sim.py.
   tests/motion_studio/test_calibrate.py). The long kick now goes 4.85-5.33 m from -0.5 to +1 cm (real 5.1-5.6 m
   from the spot to +2 cm; 4.4-4.6 m before), but ours falls from +1.5 cm. Ours 3 v 3 against standing robots and
   the walks, turns and stand-ups are unchanged within their spread (see the closing note of issue 12).
+  ``sim/physics_candidates/rigid_joints.toml`` switches the drift off; its header has what that changes.
 * **Body-part friction, fitted on the real lying-on-back stand-up (2026-11-26, issue 12).** SimSpark's robot
   contacts slip in proportion to their tangential force (force-dependent slip 5e-3 m/s per N, μ = ∞), so a body part
   pushed hard along the ground slides while the feet of a walk, whose tangential forces stay small, hold. Lying on
