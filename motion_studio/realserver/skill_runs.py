@@ -24,6 +24,7 @@ from motion_studio.realserver.cases import (CONNECT_CYCLES, CYCLE_S, FALL_SCRIPT
 from motion_studio.realserver.errors import RealServerError
 from motion_studio.realserver.process import AGENT_PORT, MonitorLink, RealServer, connect
 from motion_studio.scenarios import Truth
+from sim.physics_params import PhysicsParams
 
 #: SelfCollisionsTolerance of naosoccersim.rb [m].
 SELF_COLLISION_TOLERANCE_M = 0.04
@@ -76,20 +77,22 @@ def record_completions(run: Run, inner: SkillBehavior, done: dict[str, int], ind
             done[name] = count
 
 
-def run_sim(case: Case, motions: MotionSource, record: bool = False) -> Run:
+def run_sim(case: Case, motions: MotionSource, record: bool = False, physics: PhysicsParams | None = None) -> Run:
     """The session on our simulator: in-process agent, the full referee (PlayOn rules, self-collision
     fouls) and the same trainer commands at the same cycle as on the real server. ``record`` keeps our
     monitor's full state after every cycle and the sense messages (``Run.monitor``, ``Run.senses``): the inputs
-    of the measures that read the real server's logs (``motion-studio real joint-slack --ours``)."""
+    of the measures that read the real server's logs (``motion-studio real joint-slack --ours``). ``physics``:
+    our world's parameters (default: `sim.physics_params.default_physics_params`)."""
     from sim.engine import SimEngine
     from sim.inprocess import InProcessHost
     from sim.monitor import MonitorStream, MujocoWorldScene, snapshot_of
     from sim.rules.self_collision import colliding_pairs
     from sim.rules.trainer import apply_trainer_message
 
-    engine = SimEngine(seed=0)
+    engine = SimEngine(seed=0, physics=physics)
     host = InProcessHost(engine, record=record)
-    stream, scene = MonitorStream(engine.referee.config), MujocoWorldScene(engine.world)
+    if record:
+        stream, scene = MonitorStream(engine.referee.config), MujocoWorldScene(engine.world)
     inner, fall_behavior = behavior(case, motions)
     agent = Agent(AgentConfig(TEAM, UNUM, case.robot_type, say=False), fall_behavior)
     run = Run("sim", [])

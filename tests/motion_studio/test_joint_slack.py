@@ -11,15 +11,11 @@ from pathlib import Path
 
 import numpy as np
 
-from agent.agent import Agent, AgentConfig
-from motion_studio.realserver.cases import CASES, MotionSource, behavior
+from motion_studio.realserver.cases import CASES, MotionSource
 from motion_studio.realserver.joint_slack import body_slack, hinge_angles_by_cycle, plot, table
 from motion_studio.realserver.skill_runs import run_sim
 from agent.protocol.constants import CYCLE_S
 from sim.physics_params import PhysicsParams, default_physics_params
-from sim.engine import SimEngine
-from sim.inprocess import InProcessHost
-from sim.monitor import MonitorStream, MujocoWorldScene, snapshot_of
 from sim.replay import read_log
 
 FIXTURE = Path(__file__).parent / "fixtures" / "real_0.7.3_joint_slack_walk.jsonl.gz"
@@ -43,30 +39,18 @@ def test_the_real_walking_feet_hang_below_their_joint_angles(tmp_path):
     assert "rfoot" in table({"walk_forward": slacks})
 
 
-def _ours(case_name: str, cycles: int, physics: PhysicsParams | None = None) -> tuple[str, dict]:
-    """Our monitor's full states and our sense messages of a skill case played on our simulator (the same
-    measure's inputs as on the real server): the log text and the HJ angles by cycle."""
-    engine = SimEngine(seed=0, physics=physics)
-    host = InProcessHost(engine, record=True)
-    inner, fall_behavior = behavior(CASES[case_name], MotionSource())
-    host.add(Agent(AgentConfig("Check", 1, 0, say=False), fall_behavior))
-    host.run(10)
-    engine.referee.kick_off("Left")
-    engine.referee.set_play_mode("PlayOn")
-    inner.set_skill(CASES[case_name].make_skill())
-    stream, scene = MonitorStream(engine.referee.config), MujocoWorldScene(engine.world)
-    frames = []
-    for _ in range(cycles):
-        host.run(1)
-        frames.append(stream.message(snapshot_of(scene, engine.referee), full=True))
-    return "\n".join(frames) + "\n", hinge_angles_by_cycle(payload for _, _, payload in host.stats.transcript)
+def _ours(case_name: str, physics: PhysicsParams | None = None) -> tuple[str, dict]:
+    """Our monitor's full states and our sense messages of a skill case played on our simulator (`run_sim`: the
+    same trainer commands at the same cycles as on the real server): the log text and the HJ angles by cycle."""
+    run = run_sim(CASES[case_name], MotionSource(), record=True, physics=physics)
+    return "\n".join(run.monitor) + "\n", hinge_angles_by_cycle(run.senses)
 
 
 def test_on_our_simulator_the_walking_feet_hang_below_their_joint_angles_as_on_the_real_server(tmp_path):
     """ODE's joint drift (`sim.joint_slack`, nothing fitted: the 20 ms step and ODE's ERP 0.2) puts our walking feet
     where the real monitor shows them: both 2.5-5 mm below their joint angles (median), at most 8 mm (the real 10 s
-    walk: 3.3-3.5 / 6.5 mm; ours measured 3.7 / 6.1), and along the ground within 2 mm."""
-    text, angles = _ours("walk_forward", 100)
+    walk: 3.3-3.5 / 6.5 mm; ours, the same case: 3.4 / 6.1), and along the ground within 2 mm."""
+    text, angles = _ours("walk_forward")
     log = tmp_path / "ours.log"
     log.write_text(text)
     for slack in body_slack(read_log(log), angles):
@@ -80,7 +64,7 @@ def test_with_the_drift_off_the_measure_reads_zero_on_our_simulator(tmp_path):
     """The same measure with joints that never give (``joint_slack_erp=None``): at most 0.3 mm (the HJ angles'
     0.01 deg and the monitor's digits; measured 0.12), so the residuals above are the physics', not the measure's
     (joint order, units, root pose, timing)."""
-    text, angles = _ours("walk_forward", 100, default_physics_params(joint_slack_erp=None))
+    text, angles = _ours("walk_forward", default_physics_params(joint_slack_erp=None))
     log = tmp_path / "ours.log"
     log.write_text(text)
     for slack in body_slack(read_log(log), angles):
@@ -105,7 +89,7 @@ def test_the_kicking_leg_drifts_as_on_the_real_server_up_to_the_strike(tmp_path)
     foot = real[0].rows
     strike = int(np.argmax(np.linalg.norm(foot[:, 1:], axis=1)))
     assert foot[strike, 3] > 15.0   # the real strike: the foot 18.6 mm below its joint angles
-    engine_frames, angles = _kick_on_ours()
+    engine_frames, angles = _ours("kick")
     ours_log = tmp_path / "ours.log"
     ours_log.write_text(engine_frames)
     ours = body_slack(read_log(ours_log), angles, bodies=bodies)
@@ -117,10 +101,3 @@ def test_the_kicking_leg_drifts_as_on_the_real_server_up_to_the_strike(tmp_path)
     assert max(row[3] for row in ours[0].rows.tolist()) > 12.0
     plot({"kick": real}, tmp_path / "slack.png", {"kick": ours})   # real solid, ours dashed
     assert (tmp_path / "slack.png").stat().st_size > 10_000
-
-
-def _kick_on_ours() -> tuple[str, dict]:
-    """The transfer case ``kick`` on our simulator (`run_sim`: the same trainer commands at the same cycles as on
-    the real server), with our monitor's full state after every cycle and the sense messages."""
-    run = run_sim(CASES["kick"], MotionSource(), record=True)
-    return "\n".join(run.monitor) + "\n", hinge_angles_by_cycle(run.senses)
