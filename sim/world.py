@@ -114,6 +114,8 @@ class Robot:
     body_rows: dict[str, int] = field(default_factory=dict)
     sensor_slots: dict[str, int] = field(default_factory=dict)
     geoms: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.intp))
+    ball_twins: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.intp))
+    """Its legs' ball-only geoms, moved by ODE's joint drift (``BALL_TWIN_SUFFIX``; none with the drift off)."""
     velocity_sample: np.ndarray = field(default_factory=lambda: np.zeros(3))
     acc_m_s2: np.ndarray = field(default_factory=lambda: np.zeros(3))
 
@@ -320,6 +322,8 @@ class World:
             bodies = set(robot.body_ids.tolist())
             robot.geoms = np.array([g for g in range(m.ngeom) if m.geom_bodyid[g] in bodies], dtype=np.intp)
             self.geom_robot[robot.geoms] = index
+            robot.ball_twins = np.array([g for g in robot.geoms.tolist() if m.geom(g).name.endswith(BALL_TWIN_SUFFIX)],
+                                        dtype=np.intp)
             robot.foot_bodies = {s.name: m.body(prefix + s.body).id for s in robot.spec.sensors if s.kind == "force"}
             robot.sensor_slots = {}
             for sensor in robot.spec.sensors:
@@ -341,8 +345,7 @@ class World:
         if self.joint_slack is not None:
             # The legs only: they meet the ball (a body's drift depends on its own motion against the torso alone,
             # so the others need not be followed; the monitor shows them where their joints put them).
-            twins = np.array([g for r in self.by_key.values() for g in r.geoms.tolist()
-                              if m.geom(g).name.endswith(BALL_TWIN_SUFFIX)], dtype=np.intp)
+            twins = np.concatenate([r.ball_twins for r in self.by_key.values()] or [np.zeros(0, dtype=np.intp)])
             legs = [(r.torso_body, np.array([r.body_rows[name] for name in BALL_SIDE_BODIES if name in r.body_rows]))
                     for r in self.by_key.values()]
             self.joint_slack.bind(m, legs, twins)
@@ -428,8 +431,7 @@ class World:
             bit = 1 << robot.slot
             contype, conaffinity = bit, (_ROBOT_BITS & ~bit) | _WORLD_BIT | _BALL_BIT
         colliders = robot.geoms[m.geom_contype[robot.geoms] != 0]
-        twinned = {m.geom(int(g)).name[:-len(BALL_TWIN_SUFFIX)] for g in robot.geoms
-                   if m.geom(int(g)).name.endswith(BALL_TWIN_SUFFIX)}
+        twinned = {m.geom(int(g)).name[:-len(BALL_TWIN_SUFFIX)] for g in robot.ball_twins}
         for g in colliders:  # keep the spec in step, so a recompile reproduces the masks
             name = m.geom(int(g)).name
             mask = conaffinity & ~_BALL_BIT if name in twinned else conaffinity

@@ -171,11 +171,13 @@ def joint_slack(
         typer.echo(slack.table(ours_results, server="ours"))
     if json_path is not None:
         json_path.parent.mkdir(parents=True, exist_ok=True)
-        figures = {"motions": source.revision, "cases": {
-            name: {s.body: s.summary() for s in slacks if len(s.rows)} for name, slacks in results.items()}}
+
+        def summaries(by_case: dict) -> dict:
+            return {name: {s.body: s.summary() for s in slacks if len(s.rows)} for name, slacks in by_case.items()}
+
+        figures = {"motions": source.revision, "cases": summaries(results)}
         if ours:
-            figures["ours"] = {name: {s.body: s.summary() for s in slacks if len(s.rows)}
-                               for name, slacks in ours_results.items()}
+            figures["ours"] = summaries(ours_results)
         json_path.write_text(json.dumps(figures, indent=1))
     if plot_path is not None:
         slack.plot(results, plot_path, ours_results or None)
