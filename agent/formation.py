@@ -43,7 +43,7 @@ def _scaled() -> dict[int, BeamSpot]:
 
 
 #: The kick-off spot of the striker (unum 2) [m]: one walk-in stride (0.333 m) behind the kick motion's spot
-#: (ball_forward_m 0.125) plus 4 cm, so the kick skill's line-up is a turn (beam noise: +-10 deg, +-5 cm)
+#: (ball_forward_m 0.129) plus 4 cm, so the kick skill's line-up is a turn (beam noise: +-10 deg, +-5 cm)
 #: and one stride; nearer, the robot's 0.15 m footprint reaches into the opponent half (the referee moves it
 #: to x = -2.5) or the line-up has to back off first (with the thesis spots the nearest field player of a
 #: 3-player team stood 12 m from the ball and the kick-off ran out its 15 s).

@@ -47,24 +47,26 @@ class KickConfig:
     to one; the smallest turn motion turns 2°)."""
     fine_heading_tol_deg: float = 3.0
     """... and this one while a fine kick step is still allowed (see ``fine_steps_within_s``) [deg]."""
-    forward_min_m: float = 0.004
+    forward_min_m: float = 0.0
     """Kick window along the kick line: the ball at least this far beyond its spot [m]. The kick has two regimes
     along its line, on both servers (``python -m motion_studio.realserver.kick_check kick --offsets-cm=-1,...,3``,
-    2026-11-28): on the real server 3.2-3.3 m at -0.6 deg from up to 2.5 mm short of the spot, 4.0-4.4 m at
-    -8.5 deg from 1 mm short to 3 cm beyond; on ours the same boundary with a 3 mm pocket on it (1.2-2.3 m). From
-    4 mm beyond, both kick in the far regime (the window was -1 cm before: on the boundary)..."""
-    forward_max_m: float = 0.015
-    """... and at most this far [m] (the walk-in aims at the window's middle; the kick flies 2.6-3.4 m
-    from within 1 cm of its spot, 1.9-2.6 m from 1-5 cm beyond)."""
+    2026-11-28, offsets from the spot of that day, 4 mm nearer than today's): on the real server 3.2-3.3 m at
+    -0.6 deg from up to 2.5 mm short of that spot, 4.0-4.4 m at -8.5 deg from 1 mm short to 3 cm beyond; on ours
+    the same boundary with a 3 mm pocket on it (1.2-2.3 m). From 4 mm beyond it, both kick in the far regime, so
+    the spot itself moved there (``ball_ahead_m`` of motions/params/kick.toml; real 4.07 / 4.09 m, ours 4.33 m
+    for the right / left kick); every window below is counted from the moved spot (4 mm less than before)..."""
+    forward_max_m: float = 0.011
+    """... and at most this far [m] (the walk-in aims at the window's middle; real 4.05-4.09 m from the spot to 2
+    mm beyond, 3.93 m from 6 mm beyond)."""
     lateral_in_m: float = 0.03
     """Ball across the kick line off its spot toward the robot's middle: kick when within [m] (4 cm in
     still flies 1.9-3 m within 8°)..."""
     lateral_out_m: float = 0.015
     """... and away from it [m] (4 cm out sends the ball 12-35° off: the foot meets it off centre)."""
-    loose_forward_min_m: float = -0.03
+    loose_forward_min_m: float = -0.034
     """Loose window, taken when the correction would be a slow one (kick steps, sideways or backward walks)
     or the corrections are used up: along the line from [m]..."""
-    loose_forward_max_m: float = 0.045
+    loose_forward_max_m: float = 0.041
     """... to [m]: on the real rcssserver3d 0.7.3 the kick grazes the ball from 6 cm beyond its spot (kick_check,
     2026-11-26: 4.06 m from +5 cm, 0.08 m from +6 cm), and the walk-in there ends 1.5-2.3 cm farther from the ball
     than ours. With 0.08 (the retuned kick of ec1e311 flies 2.8-2.9 m on ours from 3.5-8 cm) the kick-off taker's
@@ -77,7 +79,7 @@ class KickConfig:
     """... and across it within this toward the middle [m]..."""
     loose_lateral_out_m: float = 0.022
     """... and this away from it [m]."""
-    controlled_loose_forward_max_m: float = 0.035
+    controlled_loose_forward_max_m: float = 0.031
     """The loose window's far end for a distance-controlled kick (``KickToward(distance_m=...)``) [m]: its
     table was measured with the ball within 2 cm of the spot (on the real server the kick grazes the ball from
     6 cm beyond it). KickToward asked for 2, 3 and 4 m on ours (seeds 0-2, 3 kicks each, ``motion_studio.
@@ -95,9 +97,9 @@ class KickConfig:
     it the skill kicks the normal kick where that one would kick)..."""
     strong_forward_max_m: float = 0.02
     """... to [m]."""
-    walk_in_target_m: float = 0.015
+    walk_in_target_m: float = 0.011
     """A walk-in aims to leave the ball this far beyond its spot [m]..."""
-    walk_in_min_after_m: float = -0.005
+    walk_in_min_after_m: float = -0.009
     """... and never nearer than this (the swinging foot of the last step reaches further than the stance
     toes: a walk-in planned to end 1.8 cm nearer pushed the ball 6 cm away) [m]."""
     walk_in_first_m: float = 0.333
@@ -152,7 +154,7 @@ class KickConfig:
     max_fine_steps: int = 1
     """Kick steps taken to bring a ball already in the loose window into the window (2.5 s each), or from
     beyond ``fine_far_m`` along the line to within it..."""
-    fine_far_m: float = 0.045
+    fine_far_m: float = 0.041
     """... (farther, the kick flies 10-12° off on ours and grazes the ball on the real server: the loose window's
     end) [m]..."""
     fine_steps_within_s: float = 4.0

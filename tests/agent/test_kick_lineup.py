@@ -131,7 +131,8 @@ def test_small_heading_error_is_turned_out_only_while_there_is_time():
     assert decide(ball, aim_deg=4.0, fine_steps=CONFIG.max_fine_steps).kind == "kick"
 
 
-STRONG_SPOTS = [Spot("kick_strong", 0.121, 0.02), Spot("kick_strong_left", 0.121, -0.02)]
+#: The long kick's spot lies 8 mm nearer than the kick's (kick_strong.xml 0.1212 m, kick.xml 0.1294 m).
+STRONG_SPOTS = [Spot("kick_strong", 0.110, 0.02), Spot("kick_strong_left", 0.110, -0.02)]
 STRONG_CONFIG = CONFIG.for_strong_kick()
 
 
@@ -141,14 +142,14 @@ def _decide_strong(ball: tuple[float, float], fine_steps: int = 0):
 
 
 def test_long_kick_on_its_spot_is_played():
-    move = _decide_strong((0.121 + 0.005, 0.02))
+    move = _decide_strong((0.110 + 0.005, 0.02))
     assert (move.kind, move.motion) == ("kick", "kick_strong")
 
 
 def test_long_kick_missing_its_narrow_window_late_plays_the_normal_kick_at_once():
     """3 cm beyond the long kick's spot (where it misses the ball) once the fine steps are used up: the normal
     kick, whose loose window reaches 8 cm, kicks now; earlier a kick step is still worth it for the long one."""
-    ball = (0.121 + 0.03, 0.02)
+    ball = (0.110 + 0.03, 0.02)
     early = _decide_strong(ball)
     assert early.kind == "move" and early.motion == "kick_step_forward"
     late = _decide_strong(ball, fine_steps=CONFIG.max_fine_steps)

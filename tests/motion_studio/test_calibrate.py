@@ -132,8 +132,9 @@ def test_ball_roll_is_compared_with_the_real_figure() -> None:
     "and 4.3 m at -8.2 deg with the same boundary, but a 3 mm pocket on it (1.2-2.3 m, the ball scooped up): "
     "one cycle before the strike our stance toe leaves the ground for a step and the robot drops 4.4 mm where "
     "the real one stays (ODE's 1 mm surface layer keeps a lightly loaded toe in contact), so our foot meets the "
-    "ball 4 mm lower, its centre nearer the foot's top face than its front face. The agent's kick window starts "
-    "4 mm beyond the spot (agent.skills.kick_lineup)"))
+    "ball 4 mm lower, its centre nearer the foot's top face than its front face. The kick's spot has since moved "
+    "4 mm out (motions/params/kick.toml), where both servers kick in the far regime (live: real 4.07 m, ours "
+    "4.33 m); this recording has the ball on the spot before"))
 def test_the_real_kick_from_its_spot_moves_our_ball_as_far() -> None:
     kick = load_trace(FIXTURES / "real_0.7.3_skill_kick.jsonl.gz")
     travel = {m.name: m for m in measures(replay_trace(kick))}["ball_travel_m"]
