@@ -149,7 +149,7 @@ def run_match(config: MatchConfig, make_agent: AgentFactory,
         # The workers fork before the engine exists (nothing of MuJoCo's is copied into them).
         with AgentProcessHost(None, make_agent, agent_processes) as host:
             host.engine = engine = SimEngine(seed=config.seed)
-            handles = [host.build(team, unum, robot_type) for unum, robot_type, team in _connection_order(config)]
+            handles = [host.build(team, unum, robot_type) for unum, robot_type, team in connection_order(config)]
             for handle in handles:
                 host.connect(handle)
                 host.run(2)
@@ -161,7 +161,7 @@ def run_match(config: MatchConfig, make_agent: AgentFactory,
         guards: list[CrashGuard] = []
         # Connect one agent per cycle pair: robots built in the same cycle at the same spot knock each other
         # over on the real server (shared/real-server/README.md), and we mirror that connection habit.
-        for unum, robot_type, team in _connection_order(config):
+        for unum, robot_type, team in connection_order(config):
             guard = CrashGuard(make_agent(team, unum, robot_type), f"{team} {unum}")
             guards.append(guard)
             host.add(guard)
@@ -176,7 +176,7 @@ def run_match(config: MatchConfig, make_agent: AgentFactory,
         agent_errors=agent_errors, final_play_mode=referee.play_mode)
 
 
-def _connection_order(config: MatchConfig) -> list[tuple[int, int, str]]:
+def connection_order(config: MatchConfig) -> list[tuple[int, int, str]]:
     """(unum, robot type, team) in the order the agents connect: left 1, right 1, left 2, ..."""
     order = []
     for unum in range(1, config.players_per_team + 1):

@@ -255,7 +255,8 @@ class Dribble(Skill):
             escape = self._avoider.bearing_deg(world, ego)
             if escape is not None:
                 bearing_deg = escape
-                self.mode = "avoid"
+                if self._avoider.detouring:
+                    self.mode = "avoid"  # walking round another robot, not straight at the point
             # None ("surrounded"): walk on toward the point; standing to let the others pass never ends
             # against robots that do not move (a dribbler stood 6 s behind two standing opponents)
         request = self._steer.heading(motion, bearing_deg)
