@@ -300,6 +300,13 @@ class PhysicsParams:
     """ODE's world ERP for the joint drift of `sim.joint_slack` (where ODE's straight-line update leaves each robot
     body, a fifth of the gathered drift taken back per step; the legs meet the ball there, and the monitor shows
     it); None or 0 = joints that never give, MuJoCo's own. See "Joints give" in the docstring."""
+    swing_drift_ground_m: float | None = None
+    """A foot that carried no weight in the last step meets the field where ODE's joint drift puts it, once its
+    drift (`sim.joint_slack`) exceeds this [m]: its ball-side twin then collides with the field too. None = off
+    (the default); needs ``joint_slack_erp``. Candidate: sim/physics_candidates/swing_drift_ground.toml, whose
+    header has what it changes (the kick's real commands stay upright: the drifted kicking foot scrapes the
+    ground after the strike and stops the leg, as the real one; the walks' swing feet, drifting 3-7 mm, are left
+    out by the threshold)."""
     noslip_iterations: int = 0
     """Iterations of MuJoCo's no-slip post-solve (0 = off): removes the slip the soft friction rows leave, as
     SimSpark's unbounded friction with its small force-dependent slip all but does."""

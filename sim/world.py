@@ -137,6 +137,9 @@ class World:
         self.by_key: dict[int, Robot] = {}
         self.motors = MotorBank(self.params)
         self.joint_slack = JointSlack(self.params.joint_slack_erp) if self.params.joint_slack_erp else None
+        self._swing_twins = self._swing_slots = np.zeros(0, dtype=np.intp)
+        """The feet's ball-side twins that may meet the field (``PhysicsParams.swing_drift_ground_m``), and the foot
+        sensor slot of each."""
         """ODE's joint drift of the legs, applied to their ball-side geoms (`sim.joint_slack`); None when switched
         off (``PhysicsParams.joint_slack_erp``)."""
         self.time_s = 0.0
@@ -368,6 +371,11 @@ class World:
         self._sensor_centroid = addresses[:, None] + np.arange(4, 7)
         self.frp_active = np.zeros(len(sensor_geoms), dtype=bool)
         self._no_foot_contact = self.frp_active
+        if self.joint_slack is not None and p.swing_drift_ground_m is not None:
+            twins = [mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_GEOM, m.geom(int(g)).name + BALL_TWIN_SUFFIX)
+                     for g in sensor_geoms]
+            self._swing_twins = np.array([t for t in twins if t >= 0], dtype=np.intp)
+            self._swing_slots = np.array([i for i, t in enumerate(twins) if t >= 0], dtype=np.intp)
         self.frp_point = np.zeros((len(sensor_geoms), 3))
         self.frp_force = np.zeros((len(sensor_geoms), 3))
         self.root_qadr = np.array([r.root_qadr for r in self.by_key.values()], dtype=np.intp)
@@ -522,6 +530,8 @@ class World:
     def step(self) -> None:
         """One cycle of physics (``substeps`` MuJoCo steps), then contact bookkeeping."""
         m, d, motors = self.model, self.data, self.motors
+        if self._swing_twins.size:
+            self._swing_feet_meet_the_field()
         cycle_start = _save_state(d)
         for substep in range(self.params.substeps):
             # The first substep starts from the cycle's start; predict writes no saved field, so one copy serves
@@ -554,6 +564,18 @@ class World:
         if self.joint_slack is not None:
             self.joint_slack.settle(m, d)
         self._poses_stale = False
+
+    def _swing_feet_meet_the_field(self) -> None:
+        """A foot without weight in the last step whose joint drift exceeds ``swing_drift_ground_m`` meets the field
+        with its drifted twin this step (ODE's geometry is where the drift puts the body; a kicking foot drifts
+        13-19 mm at the strike and scrapes the ground after it, which stops the real leg)."""
+        m = self.model
+        airborne = ~self.frp_active[self._swing_slots] if self.frp_active.size else np.ones(self._swing_slots.size,
+                                                                                            dtype=bool)
+        assert self.joint_slack is not None and self.params.swing_drift_ground_m is not None
+        drift = self.joint_slack.drift_of(m.geom_bodyid[self._swing_twins])
+        meets = airborne & (np.einsum("ij,ij->i", drift, drift) > self.params.swing_drift_ground_m ** 2)
+        m.geom_conaffinity[self._swing_twins] = np.where(meets, _BALL_BIT | _WORLD_BIT, _BALL_BIT)
 
     def _guard_blow_up(self, cycle_start: tuple[np.ndarray, np.ndarray, np.ndarray, float],
                        contacts: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None = None) -> None:
