@@ -137,11 +137,11 @@ class World:
         self.by_key: dict[int, Robot] = {}
         self.motors = MotorBank(self.params)
         self.joint_slack = JointSlack(self.params.joint_slack_erp) if self.params.joint_slack_erp else None
+        """ODE's joint drift of the legs, applied to their ball-side geoms (`sim.joint_slack`); None when switched
+        off (``PhysicsParams.joint_slack_erp``)."""
         self._swing_twins = self._swing_slots = np.zeros(0, dtype=np.intp)
         """The feet's ball-side twins that may meet the field (``PhysicsParams.swing_drift_ground_m``), and the foot
         sensor slot of each."""
-        """ODE's joint drift of the legs, applied to their ball-side geoms (`sim.joint_slack`); None when switched
-        off (``PhysicsParams.joint_slack_erp``)."""
         self.time_s = 0.0
         self.mujoco_wall_s = 0.0
         """Wall time spent inside mujoco.mj_step [s] (for benchmarks)."""
@@ -570,8 +570,7 @@ class World:
         with its drifted twin this step (ODE's geometry is where the drift puts the body; a kicking foot drifts
         13-19 mm at the strike and scrapes the ground after it, which stops the real leg)."""
         m = self.model
-        airborne = ~self.frp_active[self._swing_slots] if self.frp_active.size else np.ones(self._swing_slots.size,
-                                                                                            dtype=bool)
+        airborne = ~self.frp_active[self._swing_slots]
         assert self.joint_slack is not None and self.params.swing_drift_ground_m is not None
         drift = self.joint_slack.drift_of(m.geom_bodyid[self._swing_twins])
         meets = airborne & (np.einsum("ij,ij->i", drift, drift) > self.params.swing_drift_ground_m ** 2)
