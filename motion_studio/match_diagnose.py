@@ -144,7 +144,7 @@ def diagnose(config: MatchConfig, agents_of: AgentFactory = make_agent) -> Diagn
         host.run(1)
         modes[referee.play_mode] += cycle_s
         if referee.play_mode == "BeforeKickOff":
-            waited_s += world.params.cycle_s
+            waited_s += cycle_s
             if waited_s >= config.kick_off_wait_s:
                 referee.kick_off(None)
                 waited_s = 0.0
