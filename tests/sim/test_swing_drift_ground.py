@@ -26,9 +26,13 @@ def test_only_the_candidate_lets_the_feet_twins_meet_the_field():
     world.add_robot(1, 0)
     assert world.params.swing_drift_ground_m == 0.01
     assert _foot_twins(world) == [f"r1_lfoot{BALL_TWIN_SUFFIX}", f"r1_rfoot{BALL_TWIN_SUFFIX}"]
-    for _ in range(25):   # standing: both feet loaded, no drift: the twins meet the ball only
+    compiled = world.model.geom_conaffinity[world._swing_twins].copy()   # as built: the ball only
+    for _ in range(25):   # standing: both feet loaded, no drift: the twins keep meeting the ball only
         world.step()
-    assert not np.any(world.model.geom_conaffinity[world._swing_twins] & ~np.int32(1 << 29))
+    assert np.array_equal(world.model.geom_conaffinity[world._swing_twins], compiled)
+    field = world.model.geom("field").id
+    assert not np.any(compiled & world.model.geom_contype[field])                  # not the field
+    assert not np.any(compiled & world.model.geom_contype[world.ball_geom] == 0)   # the ball, yes
 
 
 def test_the_real_kick_s_commands_keep_the_robot_up_and_the_ground_stops_the_kicking_hip(monkeypatch):
