@@ -95,9 +95,9 @@ sessions), benchmarks/bench_sim.py.
   Still different: the real ball flies (launched 4.4 m/s forward and 1.2 m/s up, lands after 0.14 s and rolls
   at 3.7 m/s); ours leaves the foot rolling at 4.0-4.2 m/s, so the distance agrees but not the path. The real
   kicking hip is also thrown back 7 deg a step for two steps right after the strike (rlj3 24.8 -> 17.9 -> 12.2
-  while commanded forward); ours follows its commands to 46 deg, with or without the ball, and the open-loop
-  replay then falls at cycle 162 where the real robot stays up. What stops the real leg is not in our model
-  (the ball had already left the foot; our heel passes 10 mm above the ground).
+  while commanded forward); ours followed its commands to 46 deg, with or without the ball, and the open-loop
+  replay then fell at cycle 162 where the real robot stays up. (Found 2026-11-28: the real foot, 13-19 mm below
+  its joint angles, scrapes the ground; see "The kicking foot meets the ground" below.)
 * **Ball contacts, fitted on pushes too (2026-11-26, issue 12).** With the contact above a walking foot pushed
   ours far harder than the real ball: the dribble's first touches, replayed with the same joint commands on both
   servers (``motion-studio real skills dribble_push --replay-sim``, fixture
@@ -160,6 +160,24 @@ sessions), benchmarks/bench_sim.py.
   from the spot to +2 cm; 4.4-4.6 m before), but ours falls from +1.5 cm. Ours 3 v 3 against standing robots and
   the walks, turns and stand-ups are unchanged within their spread (see the closing note of issue 12).
   ``sim/physics_candidates/rigid_joints.toml`` switches the drift off; its header has what that changes.
+* **The kicking foot meets the ground where its drift puts it (2026-11-28, issue 12; ``swing_drift_ground_m``).**
+  ODE's bodies are where the drift puts them, for the ground too; ours keeps the ground on the joints' geometry
+  (above: moving the stance feet lifted the walking torso and turned the real walk). After a kick's strike the
+  real kicking foot, 13-19 mm below its joint angles and still swinging down, scrapes the ground: the real hip is
+  stopped and thrown back (rlj3 24.8 -> 17.9 -> 12.2 deg while commanded on) and the robot stands; ours followed
+  its commands (25.1 -> 32.1 -> 39.2) and fell about 3 s later when the real kick's commands were replayed open
+  loop. Now a foot without weight in the last step whose drift exceeds ``swing_drift_ground_m`` meets the field
+  through its ball-side twin (``World._swing_feet_meet_the_field``). The threshold keeps the mechanism where the
+  drift is a kick's: every unloaded foot (no threshold) turned the open-loop walks (walk_backward 24 deg against
+  the real -0.2, walk_right -89 against 14), their swing feet drifting 3-7 mm onto a ground that then held them.
+  ``motion-studio calibrate`` (every real trace; 0 = as the real server) by threshold: off 1.264, 5 mm 1.114,
+  7.5 mm 1.247, 1 cm 1.091, 1.25 cm 1.041, 1.5 cm 0.997, **2 cm 1.006**; at 2 cm only the kick traces change
+  (kick, kick_left, kick_strong, kick_strong_left, kick_4m 3.07 -> 0.59, kick_beyond_8mm 2.57 -> 0.28; kick_3m
+  stays 2.82: ours still falls after it), at 1-1.5 cm some stand-up, side and walk traces move too (mixed). The
+  real kick's commands replayed: the kicking hip two and three steps after the strike 20.8 and 21.7 deg (real 17.9,
+  12.2; off 32.1, 39.2; 1 cm 24.0, 24.4), upright as the real robot; the ball 3.0 m (real 4.09 from the spot
+  before 2026-11-28, ours' pocket; off 1.99 m). Ours 3 v 3 against standing robots, seeds 0-31: 56 goals, our
+  falls 7 (off: 52, 6).
 * **Body-part friction, fitted on the real lying-on-back stand-up (2026-11-26, issue 12).** SimSpark's robot
   contacts slip in proportion to their tangential force (force-dependent slip 5e-3 m/s per N, μ = ∞), so a body part
   pushed hard along the ground slides while the feet of a walk, whose tangential forces stay small, hold. Lying on
@@ -300,13 +318,12 @@ class PhysicsParams:
     """ODE's world ERP for the joint drift of `sim.joint_slack` (where ODE's straight-line update leaves each robot
     body, a fifth of the gathered drift taken back per step; the legs meet the ball there, and the monitor shows
     it); None or 0 = joints that never give, MuJoCo's own. See "Joints give" in the docstring."""
-    swing_drift_ground_m: float | None = None
+    swing_drift_ground_m: float | None = 0.02
     """A foot that carried no weight in the last step meets the field where ODE's joint drift puts it, once its
-    drift (`sim.joint_slack`) exceeds this [m]: its ball-side twin then collides with the field too. None = off
-    (the default); needs ``joint_slack_erp``. Candidate: sim/physics_candidates/swing_drift_ground.toml, whose
-    header has what it changes (the kick's real commands stay upright: the drifted kicking foot scrapes the
-    ground after the strike and stops the leg, as the real one; the walks' swing feet, drifting 3-7 mm, are left
-    out by the threshold)."""
+    drift (`sim.joint_slack`) exceeds this [m]: its ball-side twin then collides with the field too. None or 0 = off.
+    Needs ``joint_slack_erp``. 2 cm: a kick's swing foot passes it right after the strike (13-19 mm at the
+    strike), a walking foot (3-7 mm) or a stand-up never does; see "The kicking foot meets the ground" in the
+    docstring for the threshold scan. ``sim/physics_candidates/swing_drift_ground.toml`` holds 1 cm."""
     noslip_iterations: int = 0
     """Iterations of MuJoCo's no-slip post-solve (0 = off): removes the slip the soft friction rows leave, as
     SimSpark's unbounded friction with its small force-dependent slip all but does."""

@@ -371,7 +371,7 @@ class World:
         self._sensor_centroid = addresses[:, None] + np.arange(4, 7)
         self.frp_active = np.zeros(len(sensor_geoms), dtype=bool)
         self._no_foot_contact = self.frp_active
-        if self.joint_slack is not None and p.swing_drift_ground_m is not None:
+        if self.joint_slack is not None and p.swing_drift_ground_m:
             twins = [mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_GEOM, m.geom(int(g)).name + BALL_TWIN_SUFFIX)
                      for g in sensor_geoms]
             self._swing_twins = np.array([t for t in twins if t >= 0], dtype=np.intp)
@@ -571,7 +571,7 @@ class World:
         13-19 mm at the strike and scrapes the ground after it, which stops the real leg)."""
         m = self.model
         airborne = ~self.frp_active[self._swing_slots]
-        assert self.joint_slack is not None and self.params.swing_drift_ground_m is not None
+        assert self.joint_slack is not None and self.params.swing_drift_ground_m
         drift = self.joint_slack.drift_of(m.geom_bodyid[self._swing_twins])
         meets = airborne & (np.einsum("ij,ij->i", drift, drift) > self.params.swing_drift_ground_m ** 2)
         m.geom_conaffinity[self._swing_twins] = np.where(meets, _BALL_BIT | _WORLD_BIT, _BALL_BIT)
