@@ -90,8 +90,8 @@ sessions), benchmarks/bench_sim.py.
   (on the right-foot line, centred, on the left-foot line): real 3.49, 1.72, 2.10 m, ours 3.58, 3.58, 3.13 (mu 2:
   1.00, 2.42, 3.53). The untuned kick of the ``kick_dryrun_simcmds`` fixture got worse (real 0.84 m, ours 1.32 ->
   1.70 m): one Coulomb mu is not SimSpark's force-dependent slip (see the xfail in
-  tests/sim/test_real_skill_traces.py). Skills tuned on mu 2 near the ball behave differently (WalkToBall's
-  line-up beside the ball, the kick-off: strict xfails in tests/scenarios).
+  tests/sim/test_real_skill_traces.py). Skills tuned on mu 2 near the ball behaved differently (WalkToBall's
+  line-up beside the ball, the kick-off: strict xfails in tests/scenarios, both mended since).
   Still different: the real ball flies (launched 4.4 m/s forward and 1.2 m/s up, lands after 0.14 s and rolls
   at 3.7 m/s); ours leaves the foot rolling at 4.0-4.2 m/s, so the distance agrees but not the path. The real
   kicking hip is also thrown back 7 deg a step for two steps right after the strike (rlj3 24.8 -> 17.9 -> 12.2

@@ -23,10 +23,11 @@ class BallApproach:
 
     forward_min_m: float = 0.08
     """Closest the ball may be in front (torso centre to ball centre)."""
-    forward_max_m: float = 0.38
-    """Farthest the ball may be in front and still count as close [m] (a forward walk, however short the
-    request, moves about 0.35 m with its start and stop ramps: a nearer limit made the correction walk
-    through the ball)."""
+    forward_max_m: float = 0.43
+    """Farthest the ball may be in front and still count as close [m]: ``forward_min_m`` plus the least a forward
+    walk moves (about 0.35 m with its start and stop ramps, however short the request), so a ball beyond it can be
+    walked to without walking through it. (0.38 left a ball 0.39-0.40 m ahead after a step back and a turn; the
+    forward walk then pushed it 1.55 m: tests/scenarios/test_walk_transitions.py.)"""
     lateral_m: float = 0.1
     """Largest sideways offset of the ball."""
     standoff_m: float = 0.18
