@@ -22,6 +22,7 @@ from agent.skills.dribble import Dribble, DribbleConfig
 from agent.skills.kick import KickToward
 from agent.skills.standup import StandUp
 from agent.skills.turn import TurnBy
+from agent.skills.walk_ball import WalkToBall
 from agent.world_model import WorldModel
 from motion_studio.realserver.git_export import export_motions, short_revision
 from agent.protocol.constants import CYCLE_S, HALF_LENGTH_M
@@ -259,6 +260,14 @@ CASES["dribble_turn_left"] = _dribble("dribble_turn_left", (-6.0, -4.0), 90.0, d
                                       dribble_bench.TURN_TARGET_M)
 CASES["dribble_turn_right"] = _dribble("dribble_turn_right", (-6.0, 4.0), -90.0, dribble_bench.TURN_M,
                                        dribble_bench.TURN_TARGET_M)
+#: WalkToBall with the ball beside the right foot (ego (0.12, -0.16) m), after a stand looking down at it: the line-up
+#: must not push the ball (tests/scenarios/test_walk_transitions.py; ``motion-studio real skills walk_to_ball_beside``).
+WALK_TO_BALL_BESIDE_M = (0.12, -0.16)
+CASES["walk_to_ball_beside"] = Case(
+    "walk_to_ball_beside",
+    lambda: SkillSequence((PlayMotion("stand", repeat=True, head_deg=(0.0, -45.0)), STAND_CYCLES), (WalkToBall(), None),
+                          (None, None)),
+    STAND_CYCLES + 600, ball_m=(-8.0 + WALK_TO_BALL_BESIDE_M[0], WALK_TO_BALL_BESIDE_M[1]))
 for _case in list(CASES.values()):
     if _case.motion is None and _case.name in ("stand", "turn_left", "turn_right", "walk_forward", "walk_backward",
                                                "walk_left", "walk_right"):

@@ -391,6 +391,20 @@ def test_the_shipped_kick_s_real_commands_stay_upright() -> None:
     assert upright(run.ours, range(run.meta["skill_cycle"], max(run.real) + 1))
 
 
+def test_the_line_up_beside_the_ball_leaves_it_where_it_lies_on_both_servers() -> None:
+    # Recorded with ``motion-studio real skills walk_to_ball_beside --fixture`` (2026-11-28, code 41a19b6):
+    # WalkToBall with the ball beside the right foot steps back 0.28 m and turns 20 deg; the real ball does not move,
+    # and neither does ours under the same commands; the torsos stay within 1.5 cm of each other (headings -20.6 and
+    # -22.4 deg at the end).
+    run = replay("walk_to_ball_beside")
+    start, end = run.meta["skill_cycle"], max(run.real)
+    assert ball_travel_m(run) == (pytest.approx(0.0, abs=0.02), pytest.approx(0.0, abs=0.02))
+    assert run.real[end].torso_m[0] - run.real[start].torso_m[0] < -0.2      # it stepped back (real -0.28 m)
+    assert max(math.dist(run.real[i].torso_m[:2], run.ours[i].torso_m[:2]) for i in range(start, end + 1)) < 0.04
+    assert abs(run.real[end].heading_deg - run.ours[end].heading_deg) < 4.0
+    assert upright(run.ours, range(start, end + 1))
+
+
 def test_the_kick_with_the_ball_8_mm_beyond_its_spot_moves_it_as_far() -> None:
     # Recorded with ``motion-studio real skills kick_beyond_8mm --fixture`` (2026-11-27): the real ball goes 4.00 m.
     # Ours went 1.78 m until the legs got ODE's joint drift (sim.joint_slack): the real kicking foot swings down
