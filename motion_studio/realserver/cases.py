@@ -260,8 +260,9 @@ CASES["dribble_turn_left"] = _dribble("dribble_turn_left", (-6.0, -4.0), 90.0, d
                                       dribble_bench.TURN_TARGET_M)
 CASES["dribble_turn_right"] = _dribble("dribble_turn_right", (-6.0, 4.0), -90.0, dribble_bench.TURN_M,
                                        dribble_bench.TURN_TARGET_M)
-#: WalkToBall with the ball beside the right foot (ego (0.12, -0.16) m), after a stand looking down at it: the line-up
-#: must not push the ball (tests/scenarios/test_walk_transitions.py; ``motion-studio real skills walk_to_ball_beside``).
+#: WalkToBall with the ball beside the right foot ((0.12, -0.16) m from the torso before the stand, which moves the
+#: torso STAND_SHIFT_M forward), after a stand looking down at it: the line-up must not push the ball
+#: (tests/scenarios/test_walk_transitions.py; ``motion-studio real skills walk_to_ball_beside``).
 WALK_TO_BALL_BESIDE_M = (0.12, -0.16)
 CASES["walk_to_ball_beside"] = Case(
     "walk_to_ball_beside",
