@@ -138,6 +138,17 @@ class JointSlack:
             out[self.bodies] += self.drift_m
         return out
 
+    def rows_of(self, bodies: np.ndarray) -> np.ndarray:
+        """Rows of ``drift_m`` that hold these tracked bodies' drift (for a caller that reads them every step).
+
+        Raises:
+            ValueError: a body that is not tracked.
+        """
+        rows = self._row_of_body[np.asarray(bodies, dtype=np.intp)]
+        if np.any(rows == len(self.bodies)):
+            raise ValueError(f"bodies not tracked by the joint drift: {np.asarray(bodies)[rows == len(self.bodies)]}")
+        return rows
+
     def drift_of(self, bodies: np.ndarray) -> np.ndarray:
         """The drift of each body [m, world frame; (n, 3)]: where ODE would have it, less where its joints put
         it; zero for the torso and any body not tracked."""

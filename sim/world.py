@@ -139,9 +139,11 @@ class World:
         self.joint_slack = JointSlack(self.params.joint_slack_erp) if self.params.joint_slack_erp else None
         """ODE's joint drift of the legs, applied to their ball-side geoms (`sim.joint_slack`); None when switched
         off (``PhysicsParams.joint_slack_erp``)."""
-        self._swing_twins = self._swing_slots = np.zeros(0, dtype=np.intp)
-        """The feet's ball-side twins that may meet the field (``PhysicsParams.swing_drift_ground_m``), and the foot
-        sensor slot of each."""
+        self._swing_twins = self._swing_slots = self._swing_drift_rows = np.zeros(0, dtype=np.intp)
+        """The feet's ball-side twins that may meet the field (``PhysicsParams.swing_drift_ground_m``), the foot
+        sensor slot of each and its foot's row of the joint drift."""
+        self._swing_meets = np.zeros(0, dtype=bool)
+        """Which of those twins meet the field now (their collision bits are rewritten only when this changes)."""
         self.time_s = 0.0
         self.mujoco_wall_s = 0.0
         """Wall time spent inside mujoco.mj_step [s] (for benchmarks)."""
@@ -376,6 +378,8 @@ class World:
                      for g in sensor_geoms]
             self._swing_twins = np.array([t for t in twins if t >= 0], dtype=np.intp)
             self._swing_slots = np.array([i for i, t in enumerate(twins) if t >= 0], dtype=np.intp)
+            self._swing_drift_rows = self.joint_slack.rows_of(m.geom_bodyid[self._swing_twins])
+            self._swing_meets = np.zeros(len(self._swing_twins), dtype=bool)   # as compiled: the ball only
         self.frp_point = np.zeros((len(sensor_geoms), 3))
         self.frp_force = np.zeros((len(sensor_geoms), 3))
         self.root_qadr = np.array([r.root_qadr for r in self.by_key.values()], dtype=np.intp)
@@ -569,12 +573,13 @@ class World:
         """A foot without weight in the last step whose joint drift exceeds ``swing_drift_ground_m`` meets the field
         with its drifted twin this step (ODE's geometry is where the drift puts the body; a kicking foot drifts
         13-19 mm at the strike and scrapes the ground after it, which stops the real leg)."""
-        m = self.model
-        airborne = ~self.frp_active[self._swing_slots]
         assert self.joint_slack is not None and self.params.swing_drift_ground_m
-        drift = self.joint_slack.drift_of(m.geom_bodyid[self._swing_twins])
-        meets = airborne & (np.einsum("ij,ij->i", drift, drift) > self.params.swing_drift_ground_m ** 2)
-        m.geom_conaffinity[self._swing_twins] = np.where(meets, _BALL_BIT | _WORLD_BIT, _BALL_BIT)
+        drift = self.joint_slack.drift_m.take(self._swing_drift_rows, axis=0)
+        meets = np.add.reduce(drift * drift, axis=1) > self.params.swing_drift_ground_m ** 2
+        meets &= ~self.frp_active.take(self._swing_slots)
+        if not np.array_equal(meets, self._swing_meets):
+            self.model.geom_conaffinity[self._swing_twins] = np.where(meets, _BALL_BIT | _WORLD_BIT, _BALL_BIT)
+            self._swing_meets = meets
 
     def _guard_blow_up(self, cycle_start: tuple[np.ndarray, np.ndarray, np.ndarray, float],
                        contacts: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None = None) -> None:

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import mujoco
 import numpy as np
+import pytest
 
 from sim.physics_params import default_physics_params
 from sim.world import BALL_SIDE_BODIES, BALL_TWIN_SUFFIX, World
@@ -85,3 +86,14 @@ def test_the_rigid_joints_candidate_switches_the_drift_off():
     world.add_robot(1, 0)
     assert world.joint_slack is None
     assert not any(world.model.geom(g).name.endswith(BALL_TWIN_SUFFIX) for g in range(world.model.ngeom))
+
+
+def test_the_drift_rows_of_tracked_bodies_read_their_drift_and_an_untracked_body_is_refused():
+    world = _standing_world()
+    robot = world.by_key[1]
+    feet = np.array([robot.body_rows["lfoot"], robot.body_rows["rfoot"]])
+    world.joint_slack.drift_m[:] = np.arange(world.joint_slack.drift_m.size).reshape(-1, 3)
+    rows = world.joint_slack.rows_of(feet)
+    assert np.array_equal(world.joint_slack.drift_m[rows], world.joint_slack.drift_of(feet))
+    with pytest.raises(ValueError, match="not tracked"):
+        world.joint_slack.rows_of(np.array([robot.torso_body]))
