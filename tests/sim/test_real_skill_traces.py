@@ -414,3 +414,64 @@ def test_the_kick_with_the_ball_8_mm_beyond_its_spot_moves_it_as_far() -> None:
     real, ours = ball_travel_m(run)
     assert real > 3.5   # measured 4.00 m
     assert ours == pytest.approx(real, abs=0.5)
+
+
+#: The recorded lying-on-the-back stand-ups (transfer case ``standup_front``, seeded starts): the real robot stood in 8.
+BACK_STAND_UPS = ["standup_front"] + [f"standup_front_start{n}" for n in range(1, 10)]
+
+
+def _stood(poses: dict[int, Pose], cycles: range) -> bool:
+    """The transfer's criterion: the torso centre above 0.30 m for 1 s (50 cycles in a row)."""
+    in_a_row = 0
+    for i in cycles:
+        in_a_row = in_a_row + 1 if i in poses and poses[i].torso_m[2] > 0.30 else 0
+        if in_a_row >= 50:
+            return True
+    return False
+
+
+def _foot_contacts(messages: list[bytes], cycles: range) -> int:
+    """Foot-pressure predicates (feet touching something) over ``cycles``."""
+    return sum(len(parse_sense(messages[i]).frp) for i in cycles)
+
+
+@pytest.mark.parametrize("case", [case for case in BACK_STAND_UPS if case != "standup_front_start6"])
+def test_back_stand_up_agrees_until_the_legs_turn_in(case: str) -> None:
+    # Measured 2026-11-28: up to 3.0 s into the skill phase (the scripted fall, the lie, the sit-up) the legs follow
+    # the real ones within 0.0-0.7 deg RMS; there the stand-up turns the legs in with the hip yaw-pitch and hip roll
+    # while the feet lie on the ground (see the xfail below). Start 6 parts earlier: landing from the fall knocks
+    # both real hips from -23.5 to -17.6 deg (held there, commanded still), ours stay (2.15 deg RMS).
+    run = replay(case)
+    assert joint_rms_deg(run, window(run, 148)) < 1.0
+
+
+@pytest.mark.xfail(strict=True, reason="measured disagreement (2026-11-28): the real agent's back stand-ups replayed open "
+                   "loop stand ours up in 2 of 10 recorded starts (start4 and start9), the real robot in 8 (not start5, "
+                   "not start9). All ten part at the same phase, 3.0-3.1 s into the skill: the hip yaw-pitch and hip "
+                   "roll turn the legs in while the feet lie on the ground. The real feet stay on it (foot-pressure "
+                   "predicates in 16-24 of the 30 foot-cycles of 3.0-3.3 s, 57-68 N sideways in the foot frame), so "
+                   "the real joints lag their commands (llj1 -73 to -82 deg at 3.3 s); ours leave it (4-6 of 30) and "
+                   "follow (llj1 -85 to -92, the hip roll into its 45 deg stop where the real one holds -4 to -10 deg "
+                   "against commands of +1.3 to +6.1 rad/s). SimSpark's feet keep friction without normal force "
+                   "(mu = inf with force-dependent slip, inside ODE's 1 mm surface layer); MuJoCo's cone gives none "
+                   "(sim.physics_params, 'What MuJoCo cannot express'). Foot friction 3, 6 or 20 instead of 2 does "
+                   "not bring the outcomes together (motion-studio calibrate with NAO3D_PHYSICS_FILE).")
+def test_the_real_back_stand_ups_have_the_real_outcome_on_ours() -> None:
+    outcomes = []
+    for case in BACK_STAND_UPS:
+        run = replay(case)
+        cycles = range(run.meta["skill_cycle"], max(run.real) + 1)
+        outcomes.append((_stood(run.real, cycles), _stood(run.ours, cycles)))
+    assert sum(real for real, _ in outcomes) == 8
+    assert sum(real == ours for real, ours in outcomes) >= 9
+
+
+def test_real_feet_stay_on_the_ground_while_the_legs_turn_in() -> None:
+    # The measurement behind the xfail above, kept as a figure that must not drift unnoticed: the real feet touch
+    # in 16-24 of the 30 foot-cycles from 3.0 to 3.3 s of every recorded start, ours in 4-6.
+    for case in BACK_STAND_UPS:
+        run = replay(case)
+        start = run.meta["skill_cycle"] + 150
+        spread = range(start, start + 15)
+        assert _foot_contacts(run.real_messages, spread) >= 16
+        assert _foot_contacts(run.our_messages, spread) <= 8
