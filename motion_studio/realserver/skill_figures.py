@@ -65,25 +65,34 @@ def figures(run: Run, case: Case) -> dict[str, float | str]:
         if case.kick:
             dx, dy = truths[-1].ball_m[0] - first.ball_m[0], truths[-1].ball_m[1] - first.ball_m[1]
             out["ball direction [deg]"] = wrap_deg(math.degrees(math.atan2(dy, dx)) - first.heading_deg)
-    if case.dribble is not None and case.ball_m is not None:
-        direction_deg, way_m = case.dribble
-        dribble = measure(run.truths[STAND_CYCLES:], case.ball_m, direction_deg, way_m,
-                          run.modes[STAND_CYCLES:] if run.modes else None)
-        out["dribble ball way [m]"] = way_m
-        out["dribble time [s]"] = math.nan if dribble["time_s"] is None else dribble["time_s"]
-        out["dribble speed [m/s]"] = math.nan if dribble["speed_m_s"] is None else dribble["speed_m_s"]
-        out[f"ball within {KEEP_M} m [share]"] = dribble["keep_share"]
-        for label, key in (("p95", "distance_p95_m"), ("max", "distance_max_m")):
-            out[f"ball from torso {label} [m]"] = math.nan if dribble[key] is None else dribble[key]
-        out["dribble fell"] = "yes" if dribble["fell"] else "no"
-        for group, seconds in dribble.get("time_by_mode_s", {}).items():
-            out[f"dribble {group} [s]"] = seconds
+    out.update(dribble_figures(run, case))
     if case.fall:
         # stood up: the torso centre above 0.30 m for 1 s after the fall (measures.stood_index; an upright
         # tilt alone is no stand: a robot sitting upright keeps its torso below 0.30 m)
         stood = stood_index(run.truths, fall + 1) if fall is not None else None
         out["stood up after [s]"] = math.nan if stood is None else (stood - fall) * CYCLE_S
         out["upright at end"] = "yes" if truths[-1].up_z > 0.9 and truths[-1].torso_m[2] > 0.3 else "no"
+    return out
+
+
+def dribble_figures(run: Run, case: Case) -> dict[str, float | str]:
+    """The dribble benchmark's figures of a dribble case's run (``skill_bench.dribble.measure`` after the stand);
+    empty for any other case (shared by ``motion-studio real skills`` and ``motion-studio transfer``)."""
+    if case.dribble is None or case.ball_m is None:
+        return {}
+    direction_deg, way_m = case.dribble
+    dribble = measure(run.truths[STAND_CYCLES:], case.ball_m, direction_deg, way_m,
+                      run.modes[STAND_CYCLES:] if run.modes else None)
+    out: dict[str, float | str] = {
+        "dribble ball way [m]": way_m,
+        "dribble time [s]": math.nan if dribble["time_s"] is None else dribble["time_s"],
+        "dribble speed [m/s]": math.nan if dribble["speed_m_s"] is None else dribble["speed_m_s"],
+        f"ball within {KEEP_M} m [share]": dribble["keep_share"]}
+    for label, key in (("p95", "distance_p95_m"), ("max", "distance_max_m")):
+        out[f"ball from torso {label} [m]"] = math.nan if dribble[key] is None else dribble[key]
+    out["dribble fell"] = "yes" if dribble["fell"] else "no"
+    for group, seconds in dribble.get("time_by_mode_s", {}).items():
+        out[f"dribble {group} [s]"] = seconds
     return out
 
 

@@ -21,12 +21,13 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 from agent.skills.base import PlayMotion
-from motion_studio.realserver.cases import (CASES, CYCLE_S, FALL_SCRIPT_CYCLES, SETTLE_CYCLES, Case, MotionSource,
-                                            SkillSequence, motion_source, with_dribble_config)
+from motion_studio.realserver.cases import (CASES, CYCLE_S, FALL_SCRIPT_CYCLES, KICK_LINEUP_CM, SETTLE_CYCLES, Case,
+                                            MotionSource, SkillSequence, motion_source, with_dribble_config)
 from motion_studio.realserver.errors import FixtureError, RealServerError
 from motion_studio.realserver.fixtures import Fixture, fixture_path, read_fixture, write_fixture
 from motion_studio.realserver.measures import (ball_travel_m, count_falls, displacement_m, first_fall, known,
                                                stood_index, turned_deg, wrap_deg)
+from motion_studio.realserver.skill_figures import dribble_figures
 from motion_studio.realserver.skill_runs import Run
 
 TOOL = "motion-studio transfer"
@@ -42,6 +43,9 @@ WALK_20M = Case("walk_20m", lambda: SkillSequence((PlayMotion("walk_forward", re
 WALK_DIRECTIONS = {"walk_forward": (1.0, 0.0), "walk_backward": (-1.0, 0.0), "walk_left": (0.0, 1.0),
                    "walk_right": (0.0, -1.0)}
 STANDUP_CASES = ("standup_back", "standup_front", "standup_side")
+#: Cases without a kick motion of their own whose figure is how far the ball moved: KickToward's line-up and kick
+#: from behind the ball, and WalkToBall's line-up beside it (which must leave it where it lies).
+BALL_CASES = (*(f"kick_lineup_{d}cm" for d in KICK_LINEUP_CM), "walk_to_ball_beside")
 #: The side each stand-up case's robot really lies on, measured on both servers 2.7 s into the skill phase:
 #: standup_back's fall script tips it forward (torso forward axis z -0.5, up axis z -0.85, centre at 0.19 m) and
 #: the agent plays standup_front; standup_front's tips it onto its back (forward axis z 0.97) and standup_back
@@ -267,6 +271,10 @@ def run_figures(pair: Pair) -> dict[str, dict[str, float | str]]:
             figures["heading change [deg]"] = wrap_deg(last.heading_deg - truths[0].heading_deg)
         elif case.name == "stand":
             figures["torso z mean [m]"] = statistics.fmean(t.torso_m[2] for t in truths)
+        elif case.dribble is not None:
+            figures.update(dribble_figures(run, case))
+        elif case.ball_m is not None and case.name in BALL_CASES:
+            figures["ball moved [m]"] = ball_travel_m(truths[0], truths[-1])
         out[side] = figures
     return out
 

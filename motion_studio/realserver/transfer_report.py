@@ -8,9 +8,14 @@ from collections.abc import Collection
 from dataclasses import dataclass
 from pathlib import Path
 
-from motion_studio.realserver.cases import CONTROLLED_KICK_M, CYCLE_S
+from motion_studio.realserver.cases import CONTROLLED_KICK_M, CYCLE_S, KICK_LINEUP_CM
 from motion_studio.realserver.transfer import (LIES_ON, STANDUP_CASES, WALK_20M, WALK_DIRECTIONS, Pair, Transfer,
                                                run_name)
+from motion_studio.skill_bench.dribble import KEEP_M
+
+#: The dribble cases: (case, what the label calls it).
+_DRIBBLES = (("dribble", "dribble 10 m straight"), ("dribble_turn_left", "dribble 4 m turning left"),
+             ("dribble_turn_right", "dribble 4 m turning right"))
 
 #: Row labels of the single-run cases, in table order: (case, figure key, label).
 SINGLE_ROWS = (
@@ -27,6 +32,13 @@ SINGLE_ROWS = (
     ("kick_strong", "ball travel [m]", "kick_strong: distance [m]"),
     ("kick_strong_left", "ball travel [m]", "kick_strong_left: distance [m]"),
     *((f"kick_{d}m", "ball travel [m]", f"kick asked for {d} m: distance [m]") for d in CONTROLLED_KICK_M),
+    # KickToward as a set-piece taker starts it (line-up and kick); the kick-off spot is 50 cm behind the ball
+    *((f"kick_lineup_{d}cm", "ball moved [m]", f"KickToward from {d} cm behind the ball: ball moved [m]")
+      for d in KICK_LINEUP_CM),
+    ("walk_to_ball_beside", "ball moved [m]", "WalkToBall, ball beside the feet: ball moved [m]"),
+    *(row for case, label in _DRIBBLES for row in (
+        (case, "dribble speed [m/s]", f"{label}: speed [m/s]"),
+        (case, f"ball within {KEEP_M} m [share]", f"{label}: ball within {KEEP_M} m of the torso [share]"))),
 )
 
 
@@ -77,7 +89,8 @@ def rows(pairs: list[Pair], figures: dict[str, dict], starts: int, absent: str =
             out.append(Row(label, math.nan, math.nan, missing(case)))
             continue
         pair_figures = figures[case]
-        note = _fall_note(pair_figures) if case in WALK_DIRECTIONS or case.startswith("turn") else ""
+        walking = case in WALK_DIRECTIONS or case.startswith(("turn", "dribble"))
+        note = _fall_note(pair_figures) if walking else ""
         out.append(Row(label, pair_figures["real"].get(key, math.nan), pair_figures["ours"].get(key, math.nan),
                        "; ".join(filter(None, [note, *by_name[case].notes[1:]]))))
     for case in STANDUP_CASES:

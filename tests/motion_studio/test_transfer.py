@@ -57,6 +57,26 @@ def test_turn_rows_compare_the_recorded_real_turn_with_ours_replaying_it(tmp_pat
     assert f"{turn.ratio:.2f}" in line and f"{turn.real:.1f}" in line
 
 
+def test_ball_and_dribble_rows_compare_the_recorded_real_runs_with_ours(tmp_path: Path) -> None:
+    # Recorded 2026-11-28 at f75c5fb (motion-studio real skills CASE --fixture): KickToward from the kick-off spot,
+    # WalkToBall beside the ball, the 10 m dribble. Replayed open loop, ours kicks from the kick-off spot (real
+    # 4.25 m, ours 3.91) and leaves the ball beside the feet where it lies; the dribble's replay loses the ball after
+    # its first touches (closed-loop commands), so only its real figures are pinned here.
+    result = _replayed(tmp_path, "kick_lineup_50cm", "walk_to_ball_beside", "dribble")
+    assert result.errors == []
+    rows = {row.figure: row for row in transfer_report.rows(result.pairs, result.figures, starts=1)}
+    lineup = rows["KickToward from 50 cm behind the ball: ball moved [m]"]
+    assert lineup.real == pytest.approx(4.25, abs=0.01)
+    assert 0.85 < lineup.ratio < 1.1   # measured 0.92
+    beside = rows["WalkToBall, ball beside the feet: ball moved [m]"]
+    assert beside.real < 0.02 and beside.ours < 0.02
+    dribble = rows["dribble 10 m straight: speed [m/s]"]
+    assert dribble.real == pytest.approx(0.311, abs=0.005)   # 10 m in 32.2 s on the real server
+    keep = rows["dribble 10 m straight: ball within 0.5 m of the torso [share]"]
+    assert keep.real == pytest.approx(0.478, abs=0.01)
+    assert math.isnan(rows["KickToward from 45 cm behind the ball: ball moved [m]"].real)   # not in this run
+
+
 def test_cases_left_out_of_a_selection_read_not_run_and_missing_fixtures_no_fixture() -> None:
     """A replay of some cases (``--case``) notes the others "not run", not "no fixture" (it said "no fixture" of
     every case it was not asked for); a selected case without runs keeps the caller's note."""
