@@ -34,7 +34,7 @@ from dataclasses import replace
 
 from agent.motion import MotionController, MotionRequest
 from agent.skills.base import Skill
-from agent.skills.kick_lineup import STEP_FORWARD, KickConfig, Move, Spot, plan, plan_with_fallback
+from agent.skills.kick_lineup import STEP_FORWARD, KickConfig, Move, Spot, foot_side, plan, plan_with_fallback
 from agent.skills.walk import FORWARD, TURN_LEFT, TURN_RIGHT, WalkConfig, WalkTo, report_walk_odometry
 from agent.world.frames import wrap_angle_rad
 from agent.world_model import WorldModel
@@ -68,7 +68,8 @@ def kick_spots(motion: MotionController, strong: bool) -> list[Spot]:
         if name in motion.library:
             constants = motion.library.get(name).constants
             if "ball_forward_m" in constants and "ball_left_m" in constants:
-                spots.append(Spot(name, float(constants["ball_forward_m"]), float(constants["ball_left_m"])))
+                spots.append(Spot(name, float(constants["ball_forward_m"]), float(constants["ball_left_m"]),
+                                  float(constants.get("ball_direction_deg", 0.0))))
     if not spots:
         raise KeyError(f"no kick motion ({base}, {base + LEFT_SUFFIX}) with ball_forward_m/ball_left_m constants "
                        f"in the library; known: {', '.join(motion.library.names)}")
@@ -226,13 +227,14 @@ class KickToward(Skill):
         fine_steps = self.fine_steps
         if self._started_s is not None and world.now_s - self._started_s > self.config.fine_steps_within_s:
             fine_steps = self.config.max_fine_steps  # too late for precision
+        keep_side = None if self.foot is None else foot_side(self.foot)
         if self.strong:
             alignment, move = plan_with_fallback(self.config, self._fallback_config, ball, aim_rad, spots,
                                                  kick_spots(motion, False), library, self.corrections,
-                                                 self.approaches, fine_steps, pose is not None, step_m)
+                                                 self.approaches, fine_steps, pose is not None, step_m, keep_side)
         else:
             alignment, move = plan(self.config, ball, aim_rad, spots, library, self.corrections, self.approaches,
-                                   fine_steps, pose is not None, step_m)
+                                   fine_steps, pose is not None, step_m, keep_side)
         self.foot = alignment.spot.motion
         logger.debug("t=%.2f ball (%.3f, %.3f) spot %s error (%+.3f, %+.3f) aim %+.1f deg -> %s %s (%s)",
                      world.now_s, ball[0], ball[1], alignment.spot.motion, alignment.error_f, alignment.error_l,
@@ -261,7 +263,7 @@ class KickToward(Skill):
         else:
             self.corrections += 1
             self._goal_team = None
-            self._heading_team_rad = None if pose is None else pose.heading_rad + aim_rad
+            self._heading_team_rad = None if pose is None else pose.heading_rad + alignment.aim_rad
         self._move, self._move_started, self._cycles, self._last_phase = move, False, 0, None
         self._lean = 0.0
         self._still_since_s = None

@@ -62,7 +62,7 @@ def figures(run: Run, case: Case) -> dict[str, float | str]:
         out["drift [m]"] = math.dist(first.torso_m[:2], end.torso_m[:2])
     if (case.ball_m is not None or case.kick) and not math.isnan(first.ball_m[0]):
         out["ball moved [m]"] = math.dist(first.ball_m[:2], truths[-1].ball_m[:2])
-        if case.kick:
+        if case.kick or case.motion == "kick":   # a kick motion, or KickToward's line-up (aimed along the start heading)
             dx, dy = truths[-1].ball_m[0] - first.ball_m[0], truths[-1].ball_m[1] - first.ball_m[1]
             out["ball direction [deg]"] = wrap_deg(math.degrees(math.atan2(dy, dx)) - first.heading_deg)
     out.update(dribble_figures(run, case))

@@ -216,6 +216,10 @@ class KickParams:
     """Ball centre ahead of the support sole's centre when the kick starts [m]."""
     ball_side_m: float = 0.083
     """Ball centre beside (toward the kicking foot) the support sole's centre when the kick starts [m]."""
+    ball_direction_deg: float = 0.0
+    """Measured, not a shape parameter: the direction the ball leaves in, against the robot's heading [deg] (+ =
+    left; mirrored for the left foot). Written as the constant ``ball_direction_deg``: the kick skill faces that
+    much the other way of its aim (``agent.skills.kick_lineup.Spot``)."""
 
 
 @dataclass(frozen=True)
@@ -482,14 +486,18 @@ def build_kick(name: str, params: KickParams, stance: GaitParams, solver: Keyfra
 
 
 def ball_constants(params: KickParams, stance: GaitParams) -> dict[str, float]:
-    """The ball's spot in the ego frame of the robot in the walk stance: ``ball_forward_m``, ``ball_left_m``.
+    """The ball's spot in the ego frame of the robot in the walk stance: ``ball_forward_m``, ``ball_left_m``; and
+    ``ball_direction_deg`` where the kick has a measured direction.
 
     The stance puts the soles ``torso_forward_m`` behind the torso's ground point and half the foot spacing
     to each side; the support (left) sole is the origin of the kick's geometry.
     """
     half = stance.foot_spacing_m / 2.0
-    return {"ball_forward_m": round(params.ball_ahead_m - stance.torso_forward_m, 4),
-            "ball_left_m": round(half - params.ball_side_m, 4)}
+    constants = {"ball_forward_m": round(params.ball_ahead_m - stance.torso_forward_m, 4),
+                 "ball_left_m": round(half - params.ball_side_m, 4)}
+    if params.ball_direction_deg:
+        constants["ball_direction_deg"] = round(params.ball_direction_deg, 2)
+    return constants
 
 
 def mirrored_kick(motion: Motion, name: str, header_comments: tuple[str, ...] = ()) -> Motion:
@@ -497,6 +505,8 @@ def mirrored_kick(motion: Motion, name: str, header_comments: tuple[str, ...] = 
     mirrored = motion.mirrored()
     constants = dict(mirrored.constants)
     constants["ball_left_m"] = -constants.get("ball_left_m", 0.0)
+    if "ball_direction_deg" in constants:
+        constants["ball_direction_deg"] = -constants["ball_direction_deg"]
     return replace(mirrored, name=name, constants=constants, header_comments=header_comments)
 
 

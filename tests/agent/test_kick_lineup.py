@@ -7,7 +7,8 @@ import math
 
 import pytest
 
-from agent.skills.kick_lineup import KICK_STEP_M, KickConfig, Spot, align, plan, plan_with_fallback, strides_for
+from agent.skills.kick_lineup import (KICK_STEP_M, KickConfig, Spot, align, foot_side, plan, plan_with_fallback,
+                                    strides_for)
 
 CONFIG = KickConfig()
 SPOTS = [Spot("kick", 0.118, 0.021), Spot("kick_left", 0.118, -0.021)]
@@ -171,3 +172,38 @@ def test_a_walk_in_that_would_end_on_the_ball_steps_back_first(beyond_m):
     assert (move.kind, move.motion) == ("move", "kick_step_backward")
     after_step = decide((0.118 + beyond_m + 2 * KICK_STEP_M, 0.0))
     assert after_step.kind == "walk_in" and after_step.strides == 1
+
+
+# ---- the kick's ball direction (KickConfig.aim_ball_direction) -------------------------------------------------
+DIRECTED = KickConfig(aim_ball_direction=True)
+DIRECTED_SPOTS = [Spot("kick", 0.118, 0.021, -8.0), Spot("kick_left", 0.118, -0.021, 8.0)]
+
+
+def test_a_directed_kick_pose_faces_the_aim_turned_back_by_the_ball_direction():
+    # The ball straight ahead on the right foot's spot, the aim straight ahead: the right-foot kick sends the ball
+    # 8 deg right, so its pose faces 8 deg left of the aim; off (the default) it faces the aim.
+    ball = (0.118 + 0.005, 0.021)
+    directed = align(ball, 0.0, DIRECTED_SPOTS, DIRECTED, directed=True)
+    assert directed.spot.motion == "kick"
+    assert directed.aim_deg == pytest.approx(8.0)
+    plain = align(ball, 0.0, DIRECTED_SPOTS, CONFIG)
+    assert plain.aim_deg == pytest.approx(0.0) and plain.spot.motion == "kick"
+    # the default plan ignores the direction: the ball on its spot kicks at once
+    assert plan(CONFIG, ball, 0.0, DIRECTED_SPOTS, ALL, 0, 0, 0, True)[1].kind == "kick"
+    assert plan(DIRECTED, ball, 0.0, DIRECTED_SPOTS, ALL, 0, 0, 0, True)[1].kind == "turn"
+
+
+def test_the_foot_is_chosen_in_the_aim_frame_and_kept():
+    # A ball in the middle: without a kept foot the choice is the aim frame's (the feet's own frames, 16 deg apart,
+    # made it flip as the robot turned); a kept foot stays unless the other fits clearly better.
+    ball = (0.30, 0.0)
+    first = align(ball, 0.0, DIRECTED_SPOTS, DIRECTED, directed=True)
+    other = "left" if first.spot.motion == "kick" else "right"
+    kept = align(ball, 0.0, DIRECTED_SPOTS, DIRECTED, directed=True, keep_side=other)
+    assert foot_side(kept.spot.motion) == other
+    near_right = (0.13, 0.015)   # 6 mm from the right foot's spot, 3.6 cm from the left's
+    assert align(near_right, 0.0, DIRECTED_SPOTS, DIRECTED, directed=True).spot.motion == "kick"
+    assert align(near_right, 0.0, DIRECTED_SPOTS, DIRECTED, directed=True, keep_side="left").spot.motion == "kick_left"
+    far_right = (0.13, 0.021 - 0.25)   # 25 cm right of the right foot's spot: the left foot no longer holds
+    assert align(far_right, 0.0, DIRECTED_SPOTS, DIRECTED, directed=True, keep_side="left").spot.motion == "kick"
+    assert foot_side("kick_strong_left") == "left" and foot_side("kick") == "right"

@@ -110,3 +110,11 @@ def test_a_bad_playback_entry_names_the_file_the_line_and_the_motion(tmp_path: P
     error = caught.value
     assert error.path == str(folder / "playback.toml") and error.line == line and error.field == field
     assert words in str(error)
+
+
+def test_kick_spots_carry_the_kick_s_ball_direction() -> None:
+    # motions/params/kick.toml: the shipped kick sends the ball 8 deg to the kicking foot's side, the long kick straight
+    controller = MotionController(default_library(0), load_dynamic_params(), 0)
+    assert {spot.motion: spot.direction_deg for spot in kick_spots(controller, strong=False)} == {
+        "kick": -8.0, "kick_left": 8.0}
+    assert {spot.direction_deg for spot in kick_spots(controller, strong=True)} == {0.0}

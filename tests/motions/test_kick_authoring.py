@@ -93,6 +93,10 @@ def test_left_kick_is_the_mirror_image(kicks):
     assert strike_l.angle_rad("llj2") == pytest.approx(-strike_r.angle_rad("rlj2"))  # roll flips
     assert left.constants["ball_left_m"] == pytest.approx(-right.constants["ball_left_m"])
     assert left.constants["ball_forward_m"] == pytest.approx(right.constants["ball_forward_m"])
+    # the measured ball direction (motions/params/kick.toml: the real kick 7.6-8.5 deg to the kicking foot's side)
+    assert right.constants["ball_direction_deg"] == pytest.approx(-8.0)
+    assert left.constants["ball_direction_deg"] == pytest.approx(8.0)
+    assert "ball_direction_deg" not in kicks["kick_strong"].constants   # the long kick goes straight: 0, not written
 
 
 def test_strike_moves_the_foot_forward_through_the_ball_spot(kicks, fk):
@@ -182,6 +186,12 @@ def test_build_kick_reuses_a_solver():
     second = build_kick("kick", KickParams(), stance, solver)
     assert [_angles(k) for k in first.keyframes] == [_angles(k) for k in second.keyframes]
     assert np.isfinite([a for k in first.keyframes for a in _angles(k).values()]).all()
+
+
+def test_a_ball_direction_is_written_only_where_measured():
+    stance = stance_params()
+    assert "ball_direction_deg" not in ball_constants(KickParams(), stance)
+    assert ball_constants(KickParams(ball_direction_deg=-7.25), stance)["ball_direction_deg"] == pytest.approx(-7.25)
 
 
 def test_ball_spot_follows_the_stance():

@@ -173,3 +173,24 @@ def test_the_kick_off_line_up_kicks_from_the_whole_range_of_the_beam(distance_cm
     assert math.dist(truths[0].ball_m[:2], truths[-1].ball_m[:2]) >= 1.5
     assert not any(t.fallen for t in truths)
     assert any(name.startswith("kick") and not name.startswith("kick_step") for _, name in run.completions)
+
+
+def test_kick_toward_aiming_with_the_ball_direction_sends_the_ball_along_the_aim(library):
+    """The kick sends the ball 8-10 deg to the kicking foot's side (motions/params/kick.toml, ball_direction_deg);
+    with ``aim_ball_direction`` the line-up faces that much the other way. The robot stands 2 cm off the right
+    foot's spot facing a target 10 m straight ahead: measured 2026-11-28, the left foot kicks, +9.6 deg by default, +1.3
+    deg with it (3.0 s later)."""
+    directions = {}
+    for aim_with_direction in (False, True):
+        spot = library.get("kick").constants
+        scenario = _skill_scenario((-4.0, 0.0), 0.0, seed=3, library=library)
+        truth = scenario.truth()
+        ball = ball_spot(truth, spot["ball_forward_m"] + 0.005, spot["ball_left_m"], 0.0)
+        scenario.place_ball(ball)
+        skill = KickToward(ball[0] + 10.0, ball[1], config=KickConfig(aim_ball_direction=aim_with_direction))
+        result = skill_run(scenario, skill, ball, (ball[0] + 10.0, ball[1]), 20.0)
+        assert skill.kicked and not result["fell"], (skill.reason, result)
+        rest = scenario.history[-1].ball_m
+        directions[aim_with_direction] = math.degrees(math.atan2(rest[1] - ball[1], rest[0] - ball[0]))
+    assert abs(directions[False]) > 6.0, directions
+    assert abs(directions[True]) < 4.0, directions
