@@ -263,7 +263,7 @@ class KickToward(Skill):
         else:
             self.corrections += 1
             self._goal_team = None
-            self._heading_team_rad = None if pose is None else pose.heading_rad + alignment.aim_rad
+            self._heading_team_rad = None if pose is None else pose.heading_rad + aim_rad - alignment.turned_back_rad
         self._move, self._move_started, self._cycles, self._last_phase = move, False, 0, None
         self._lean = 0.0
         self._still_since_s = None

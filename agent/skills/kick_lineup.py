@@ -229,7 +229,9 @@ class Alignment:
     error_l: float
     """Ball left of its spot across the kick line [m]."""
     aim_rad: float
-    """Heading change to the kick pose [rad]: facing the aim, turned back by the spot's ``direction_deg``."""
+    """Heading change to the kick pose [rad]: facing the aim (``turned_back_rad`` less)."""
+    turned_back_rad: float = 0.0
+    """How far the kick pose turns back from the aim for the spot's ball direction [rad] (0 unless directed)."""
 
     @property
     def aim_deg(self) -> float:
@@ -273,9 +275,9 @@ def align(ball: tuple[float, float], aim_rad: float, spots: list[Spot], config: 
                 + abs(along - spot.forward_m - config.window_middle_m) / config.stride_m - kept)
 
     spot = min(spots, key=misfit)
-    facing = aim_rad - math.radians(spot.direction_deg) if directed else aim_rad
-    along, across = frame(facing)
-    return Alignment(spot, along - spot.forward_m, across - spot.left_m, facing)
+    turned_back = math.radians(spot.direction_deg) if directed else 0.0
+    along, across = frame(aim_rad - turned_back)
+    return Alignment(spot, along - spot.forward_m, across - spot.left_m, aim_rad - turned_back, turned_back)
 
 
 def _lateral_limit(config: KickConfig, spot: Spot, error_l: float, loose: bool) -> float:
