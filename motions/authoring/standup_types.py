@@ -16,15 +16,18 @@ on 2026-11-23, 20 seed-0 draws: 19 in 2.42-2.90 s, one not up after 8 s and 3 at
 timings, type 0's files get a type-4 robot up from its back too, but slower: of 10 back trials drawn as
 the benchmark's (robot type 4), 6 within 3 s and two only after a retry (5.6, 6.6 s), against 10 of 10
 within 3 s (2.5-2.9 s) with these files. Type 2 has type 0's
-geometry and stands with type 0's files (back 6/6, front 6/6).
+geometry and stood with type 0's files (back 6/6, front 6/6) until type 0's back stand-up was retimed.
 
-Types 1, 3 and 4 have parameter files of their own, ``motions/params/standup_type<N>.toml``
+Types 1, 2, 3 and 4 have parameter files of their own, ``motions/params/standup_type<N>.toml``
 (:func:`type_params_path`; made from ``standup.toml`` and tuned per type with ``motion-studio tune standup
 <section> --type N``, which solves and plays the candidates as this module writes them). Type 4's holds
 ``standup.toml``'s values from before type 0's back stand-up was retimed (2026-11-27): solved for type 4, the
 retimed ones stood it up after the scripted fall onto its back in 4 of 10 real starts, these in 9 (its header
 has the figures), and a ``[roll_to_back]`` of its own with the 300 ms phases the shared roll had before it was
-shortened to 150 ms (after the faster roll type 4 did not stand on our simulator; the file's provenance). Types 1
+shortened to 150 ms (after the faster roll type 4 did not stand on our simulator; the file's provenance). Type 2's
+holds ``standup.toml``'s back stand-up from before its retime of 2026-11-28 (type 0's legs, but the retimed one
+stood a type-2 robot up within 3 s after 4 of 20 real scripted falls onto its back, the previous one after 18; its
+header has the figures). Types 1
 and 3 (longer legs): with type 0's
 parameters neither got up from the front on either server (type 3: from the front on the real server only
 after a retry, from the back on neither). What each section gave is in its provenance and measured keys.
@@ -50,7 +53,7 @@ from motions.authoring.standup import (PARAMS_PATH, ROLLS, STANDUPS, SagittalSol
 from motions.model import Motion
 
 #: Types that get their own stand-ups (see the module docstring for the others).
-TYPES = (1, 3, 4)
+TYPES = (1, 2, 3, 4)
 COMMAND = "python -m motions.authoring.standup_types"
 
 
