@@ -25,9 +25,9 @@ Types 1, 2, 3 and 4 have parameter files of their own, ``motions/params/standup_
 retimed ones stood it up after the scripted fall onto its back in 4 of 10 real starts, these in 9 (its header
 has the figures), and a ``[roll_to_back]`` of its own with the 300 ms phases the shared roll had before it was
 shortened to 150 ms (after the faster roll type 4 did not stand on our simulator; the file's provenance). Type 2's
-holds ``standup.toml``'s back stand-up from before its retime of 2026-11-28 (type 0's legs, but the retimed one
-stood a type-2 robot up within 3 s after 4 of 20 real scripted falls onto its back, the previous one after 18; its
-header has the figures). Types 1
+back stand-up is its own retime of ``standup.toml``'s from before 2026-11-28 (type 0's legs, but type 0's retimed
+one stood a type-2 robot up within 3 s after 4 of 20 real scripted falls onto its back, the one before after 18, its
+own retime after 20; its header and provenance have the figures). Types 1
 and 3 (longer legs): with type 0's
 parameters neither got up from the front on either server (type 3: from the front on the real server only
 after a retry, from the back on neither). What each section gave is in its provenance and measured keys.
