@@ -34,7 +34,8 @@ from dataclasses import replace
 
 from agent.motion import MotionController, MotionRequest
 from agent.skills.base import Skill
-from agent.skills.kick_lineup import STEP_FORWARD, KickConfig, Move, Spot, foot_side, plan, plan_with_fallback
+from agent.skills.kick_lineup import (LEFT_SUFFIX, STEP_FORWARD, KickConfig, Move, Spot, foot_side, plan,
+                                     plan_with_fallback)
 from agent.skills.walk import FORWARD, TURN_LEFT, TURN_RIGHT, WalkConfig, WalkTo, report_walk_odometry
 from agent.world.frames import wrap_angle_rad
 from agent.world_model import WorldModel
@@ -43,7 +44,6 @@ from agent.protocol.constants import CYCLE_S
 logger = logging.getLogger(__name__)
 
 KICK, STRONG = "kick", "kick_strong"
-LEFT_SUFFIX = "_left"
 TURNS = (TURN_LEFT, TURN_RIGHT)
 #: Lean rate limit of the walks this skill steers [1/s]: the walk skills' (a sudden lean can topple).
 LEAN_RATE_PER_S = WalkConfig.lean_rate_per_s

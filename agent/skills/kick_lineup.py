@@ -31,6 +31,8 @@ from agent.skills.walk import BACKWARD, FORWARD, TURN_LEFT, TURN_RIGHT
 from agent.skills.walk import LEFT as SIDE_LEFT
 from agent.skills.walk import RIGHT as SIDE_RIGHT
 
+#: The name of a kick motion's left-foot mirror is its right-foot name plus this.
+LEFT_SUFFIX = "_left"
 STEP_FORWARD, STEP_BACKWARD = "kick_step_forward", "kick_step_backward"
 STEP_LEFT, STEP_RIGHT = "kick_step_left", "kick_step_right"
 #: What a kick step moves (``motions.authoring.kick_steps``) [m]; planning only needs it roughly.
@@ -247,7 +249,7 @@ KEEP_FOOT_MISFIT = 3.0
 
 def foot_side(motion: str) -> str:
     """The kicking foot of a kick motion: "left" for the mirrored ones (``*_left``), else "right"."""
-    return "left" if motion.endswith("_left") else "right"
+    return "left" if motion.endswith(LEFT_SUFFIX) else "right"
 
 
 def align(ball: tuple[float, float], aim_rad: float, spots: list[Spot], config: KickConfig,
@@ -276,7 +278,8 @@ def align(ball: tuple[float, float], aim_rad: float, spots: list[Spot], config: 
 
     spot = min(spots, key=misfit)
     turned_back = math.radians(spot.direction_deg) if directed else 0.0
-    along, across = frame(aim_rad - turned_back)
+    if turned_back:
+        along, across = frame(aim_rad - turned_back)
     return Alignment(spot, along - spot.forward_m, across - spot.left_m, aim_rad - turned_back, turned_back)
 
 
@@ -517,5 +520,5 @@ def plan_with_fallback(config: KickConfig, fallback_config: KickConfig, ball: tu
     return other, replace(other_move, why=f"{other_move.why} of the fallback kick (the first would {move.kind})")
 
 
-__all__ = ["KEEP_FOOT_MISFIT", "Alignment", "KickConfig", "Move", "Spot", "align", "foot_side", "plan",
+__all__ = ["KEEP_FOOT_MISFIT", "LEFT_SUFFIX", "Alignment", "KickConfig", "Move", "Spot", "align", "foot_side", "plan",
            "plan_with_fallback", "strides_for", "to_ego"]

@@ -29,6 +29,7 @@ import numpy as np
 import pytest
 
 from agent.protocol.sense import parse_sense
+from motion_studio.realserver.measures import stood_index
 from sim.engine import SimEngine
 from sim.inprocess import InProcessHost
 from sim.rules.trainer import apply_trainer_message
@@ -421,13 +422,8 @@ BACK_STAND_UPS = ["standup_front"] + [f"standup_front_start{n}" for n in range(1
 
 
 def _stood(poses: dict[int, Pose], cycles: range) -> bool:
-    """The transfer's criterion: the torso centre above 0.30 m for 1 s (50 cycles in a row)."""
-    in_a_row = 0
-    for i in cycles:
-        in_a_row = in_a_row + 1 if i in poses and poses[i].torso_m[2] > 0.30 else 0
-        if in_a_row >= 50:
-            return True
-    return False
+    """The transfer's criterion (``measures.stood_index``: the torso centre above 0.30 m for 1 s)."""
+    return stood_index([poses.get(i) for i in cycles]) is not None
 
 
 def _foot_contacts(messages: list[bytes], cycles: range) -> int:
