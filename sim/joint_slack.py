@@ -41,7 +41,9 @@ ODE_WORLD_ERP = 0.2
 #: 0.3 m lever) is about 2 mm.
 JUMP_M = 0.02
 # Index orders for a cross product without numpy.cross's overhead on small arrays.
-_Y_Z_X, _Z_X_Y = np.array([1, 2, 0]), np.array([2, 0, 1])
+# w x r = (w_y r_z - w_z r_y, w_z r_x - w_x r_z, w_x r_y - w_y r_x): both products' factors in one gather each
+# (columns of [angular, linear] and of r), so the cross product costs one multiply instead of four gathers and two.
+_W_PAIRS, _R_PAIRS = np.array([1, 2, 0, 2, 0, 1]), np.array([2, 0, 1, 1, 2, 0])
 
 
 class JointSlack:
@@ -100,8 +102,8 @@ class JointSlack:
         spatial = data.cvel.reshape(-1).take(self._cvel_rows).reshape(-1, 6)   # [angular, linear] at the tree's com
         position = data.xpos.reshape(-1).take(self._xpos_rows).reshape(-1, 3)
         lever = position - data.subtree_com.reshape(-1).take(self._com_rows).reshape(-1, 3)
-        w = spatial[:, :3]
-        linear = spatial[:, 3:] + w[:, _Y_Z_X] * lever[:, _Z_X_Y] - w[:, _Z_X_Y] * lever[:, _Y_Z_X]   # + w x r
+        products = spatial.take(_W_PAIRS, axis=1) * lever.take(_R_PAIRS, axis=1)
+        linear = spatial[:, 3:] + products[:, :3] - products[:, 3:]   # + w x r
         self._ahead = position + timestep_s * linear
 
     def settle(self, model: mujoco.MjModel, data: mujoco.MjData) -> None:
@@ -109,7 +111,7 @@ class JointSlack:
         if self.bodies.size == 0:
             return
         error = self._ahead - data.xpos.reshape(-1).take(self._xpos_rows).reshape(-1, 3)
-        if np.abs(error).max() > JUMP_M:   # rare: a beam or a restored state
+        if np.maximum.reduce(np.abs(error), axis=None) > JUMP_M:   # rare: a beam or a restored state (ufunc: no wrapper)
             jumped = (error * error).sum(axis=1) > JUMP_M * JUMP_M
             error[jumped] = 0.0
             self.drift_m[jumped] = 0.0

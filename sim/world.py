@@ -577,7 +577,7 @@ class World:
         drift = self.joint_slack.drift_m.take(self._swing_drift_rows, axis=0)
         meets = np.add.reduce(drift * drift, axis=1) > self.params.swing_drift_ground_m ** 2
         meets &= ~self.frp_active.take(self._swing_slots)
-        if not np.array_equal(meets, self._swing_meets):
+        if meets.tobytes() != self._swing_meets.tobytes():   # same length always; np.array_equal costs 4x this
             self.model.geom_conaffinity[self._swing_twins] = np.where(meets, _BALL_BIT | _WORLD_BIT, _BALL_BIT)
             self._swing_meets = meets
 
