@@ -125,6 +125,11 @@ class DribbleConfig:
     """Within this of the ball, facing the target direction within ``near_heading_deg``, the robot lines up
     with single short walks (sideways, backward) instead of going round the ball with turns [m] (each short
     walk takes 2-2.5 s for 0.27 m or more, so they only pay off for the last few decimetres)..."""
+    near_ball_keep_m: float = 0.8
+    """... and while lining up there (the last cycle's request was a near-ball one: a stop, a short walk), within
+    this [m]. Why: the steps of the stop before a short walk push the ball on, and on the real server it rolled
+    just past ``near_ball_m`` (to 0.61-0.62 m, 0.28-0.41 m aside) in 4 of 6 straight dribbles; the approach then
+    turned 40-55 deg toward a point behind the ball and back again, 5-8 s, where one side walk (2.4 s) did it."""
     near_heading_deg: float = 20.0
     """... [deg]; beyond it (and farther than ``turn_clear_m`` from the ball) it turns toward the target
     direction in place (45 left robots lined up 30-45 deg off, and the short walks that followed pushed the
@@ -283,7 +288,7 @@ class Dribble(Skill):
             return None
         forward, left = ball_ego
         distance = math.hypot(forward, left)
-        if distance > c.near_ball_m:
+        if distance > (c.near_ball_keep_m if self.mode.startswith("near:") else c.near_ball_m):
             return None
         error_deg = math.degrees(wrap_angle_rad(line_rad - heading_rad))
         walking_forward = motion.motion_name == FORWARD and not motion.stopping
