@@ -32,15 +32,18 @@ def test_types_1_and_3_line_up_for_their_own_kick_spot_and_the_others_for_type_0
             assert library.get(name).constants["ball_left_m"] == shared.get(name).constants["ball_left_m"]
 
 
-def test_types_1_and_3_do_not_play_the_long_kick_they_fall_with_but_can_still_measure_it() -> None:
+def test_type_3_does_not_play_the_long_kick_it_falls_with_but_can_still_measure_it() -> None:
+    # type 1 plays its own (motions/files/type1, solved with its kinematics: motions.authoring.kick_types)
     for robot_type in range(5):
         library = default_library(robot_type)
-        assert all((name in library) == (robot_type not in (1, 3)) for name in LONG_KICKS), robot_type
+        assert all((name in library) == (robot_type != 3) for name in LONG_KICKS), robot_type
         assert all(name in default_library(robot_type, include_withheld=True) for name in LONG_KICKS)
+    own = default_library(1).get("kick_strong").constants["ball_forward_m"]
+    assert own != default_library(0).get("kick_strong").constants["ball_forward_m"]
 
 
 def test_a_strong_kick_request_for_a_type_without_the_long_kick_plays_the_kick_with_its_own_windows() -> None:
-    controller = MotionController(default_library(1), load_dynamic_params(), 1)
+    controller = MotionController(default_library(3), load_dynamic_params(), 3)
     assert [spot.motion for spot in kick_spots(controller, strong=True)] == list(KICKS)
     skill = KickToward(10.0, 0.0, strong=True)
     assert skill.config != skill._fallback_config   # narrowed for the long kick until it sees the library
