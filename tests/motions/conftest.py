@@ -44,3 +44,15 @@ def assert_same_motion(actual: Motion, expected: Motion, angle_tolerance_rad: fl
     flat = [dataclasses.replace(k, targets={}) for k in actual.keyframes]
     want_flat = [dataclasses.replace(k, targets={}) for k in expected.keyframes]
     assert dataclasses.replace(actual, keyframes=flat) == dataclasses.replace(expected, keyframes=want_flat)
+
+
+def assert_shipped_as_generated(shipped: Motion, fresh: Motion, angle_tolerance_rad: float = 1e-9) -> None:
+    """A shipped generated file plays as the generator's fresh output: the same phases, durations, angles and
+    constants (its header, with the day it was written, may differ)."""
+    assert [k.name for k in shipped.keyframes] == [k.name for k in fresh.keyframes], fresh.name
+    for got, want in zip(shipped.keyframes, fresh.keyframes):
+        assert got.duration_s == pytest.approx(want.duration_s)
+        for wire, target in want.targets.items():
+            assert got.angle_rad(wire) == pytest.approx(target.angle_rad, abs=angle_tolerance_rad), \
+                (fresh.name, got.name, wire)
+    assert shipped.constants == pytest.approx(fresh.constants)

@@ -14,6 +14,7 @@ from kinematics.fk import NaoKinematics
 from motions.authoring.common import FootPose, KeyframeSolver
 from motions.authoring.gait import STANCE_FLAG, build_stance
 from motions.authoring import kick_steps
+from tests.motions.conftest import assert_shipped_as_generated
 from motions.authoring.kick import (FILES_DIR, JOINT_OFFSETS, STRIKE_PHASES, KickParams, Pose, PoseSolver,
                                     ball_constants, build_all, build_kick, kick_params, kick_poses, parse_kick_params,
                                     stance_params)
@@ -147,13 +148,7 @@ def test_shipped_files_equal_a_fresh_generation(kicks):
     """motions/files/kick*.xml are what the generator makes from the parameter files (regenerate with
     ``python -m motions.authoring.kick`` after changing them)."""
     for name, motion in kicks.items():
-        shipped = motions.load(FILES_DIR / f"{name}.xml")
-        assert [k.name for k in shipped.keyframes] == [k.name for k in motion.keyframes], name
-        for got, want in zip(shipped.keyframes, motion.keyframes):
-            assert got.duration_s == pytest.approx(want.duration_s)
-            for wire, target in want.targets.items():
-                assert got.angle_rad(wire) == pytest.approx(target.angle_rad, abs=1e-9), (name, got.name, wire)
-        assert shipped.constants == pytest.approx(motion.constants)
+        assert_shipped_as_generated(motions.load(FILES_DIR / f"{name}.xml"), motion)
 
 
 def test_joint_offsets_move_only_their_joint_in_their_phases_within_its_range():

@@ -13,6 +13,7 @@ from agent.motion import default_library
 from kinematics.fk import NaoKinematics
 from motions.authoring.common import FILES_DIR
 from motions.authoring.kick_types import TYPE_KICKS, build_for_type
+from tests.motions.conftest import assert_shipped_as_generated
 
 TYPES = sorted(TYPE_KICKS)
 SINGLE_SUPPORT = ("lift", "windup", "swing", "strike", "follow", "retract")
@@ -30,13 +31,7 @@ def typed(request):
 def test_shipped_type_kicks_equal_a_fresh_generation(typed):
     robot_type, built = typed
     for name, motion in built.items():
-        shipped = motions.load(FILES_DIR / f"type{robot_type}" / f"{name}.xml")
-        assert [k.name for k in shipped.keyframes] == [k.name for k in motion.keyframes], name
-        for got, want in zip(shipped.keyframes, motion.keyframes):
-            assert got.duration_s == pytest.approx(want.duration_s)
-            for wire, target in want.targets.items():
-                assert got.angle_rad(wire) == pytest.approx(target.angle_rad, abs=1e-9), (name, got.name, wire)
-        assert shipped.constants == pytest.approx(motion.constants)
+        assert_shipped_as_generated(motions.load(FILES_DIR / f"type{robot_type}" / f"{name}.xml"), motion)
 
 
 def test_type_kicks_start_and_end_in_the_shared_stand_pose(typed):
