@@ -259,17 +259,22 @@ def parse_kick_params(text: str, path: str = "<string>") -> dict[str, KickParams
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as error:
         raise ValueError(f"{path}: {error}") from None
-    known = {f.name for f in fields(KickParams)}
-
-    def values(table: Mapping[str, object], where: str) -> dict[str, object]:
-        unknown = set(table) - known - set(META_KEYS)
-        if unknown:
-            raise ValueError(f"{where}: unknown keys {sorted(unknown)}; known: {', '.join(sorted(known))}")
-        return {k: v for k, v in table.items() if k not in META_KEYS}
-
-    common = values(data.get(COMMON, {}), f"{path} [{COMMON}]")
-    return {name: KickParams(**{**common, **values(table, f"{path} [{name}]")})  # type: ignore[arg-type]
+    common = kick_values(data.get(COMMON, {}), f"{path} [{COMMON}]")
+    return {name: KickParams(**{**common, **kick_values(table, f"{path} [{name}]")})  # type: ignore[arg-type]
             for name, table in data.items() if name != COMMON}
+
+
+def kick_values(table: Mapping[str, object], where: str) -> dict[str, object]:
+    """The KickParams values of one TOML table (``provenance`` and ``measured`` left out).
+
+    Raises:
+        ValueError: an unknown key (``where`` names the file and section; the known keys are listed).
+    """
+    known = {f.name for f in fields(KickParams)}
+    unknown = set(table) - known - set(META_KEYS)
+    if unknown:
+        raise ValueError(f"{where}: unknown keys {sorted(unknown)}; known: {', '.join(sorted(known))}")
+    return {k: v for k, v in table.items() if k not in META_KEYS}
 
 
 def kick_params(section: str, path: Path = PARAMS_PATH) -> KickParams:

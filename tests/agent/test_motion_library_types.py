@@ -32,19 +32,22 @@ def test_types_1_and_3_line_up_for_their_own_kick_spot_and_the_others_for_type_0
             assert library.get(name).constants["ball_left_m"] == shared.get(name).constants["ball_left_m"]
 
 
-def test_type_3_does_not_play_the_long_kick_it_falls_with_but_can_still_measure_it() -> None:
-    # type 1 plays its own (motions/files/type1, solved with its kinematics: motions.authoring.kick_types)
+def test_every_type_plays_a_long_kick_types_1_and_3_their_own() -> None:
+    # types 1 and 3 fell with type 0's file on both servers; theirs are solved with their kinematics
+    # (motions/files/type1, type3: motions.authoring.kick_types)
+    shared = default_library(0).get("kick_strong").constants["ball_forward_m"]
     for robot_type in range(5):
         library = default_library(robot_type)
-        assert all((name in library) == (robot_type != 3) for name in LONG_KICKS), robot_type
-        assert all(name in default_library(robot_type, include_withheld=True) for name in LONG_KICKS)
-    own = default_library(1).get("kick_strong").constants["ball_forward_m"]
-    assert own != default_library(0).get("kick_strong").constants["ball_forward_m"]
+        assert all(name in library for name in LONG_KICKS), robot_type
+        own = library.get("kick_strong").constants["ball_forward_m"]
+        assert (own != shared) == (robot_type in (1, 3)), robot_type
 
 
-def test_a_strong_kick_request_for_a_type_without_the_long_kick_plays_the_kick_with_its_own_windows() -> None:
-    controller = MotionController(default_library(3), load_dynamic_params(), 3)
-    assert [spot.motion for spot in kick_spots(controller, strong=True)] == list(KICKS)
+def test_a_strong_kick_request_for_a_type_without_the_long_kick_plays_the_kick_with_its_own_windows(
+        tmp_path: Path) -> None:
+    folder = _folder_with(tmp_path, "[type2]\nwithheld = [\"kick_strong\"]\n")
+    controller = MotionController(default_library(2, folder), load_dynamic_params(), 2)
+    assert [spot.motion for spot in kick_spots(controller, strong=True)] == ["kick"]
     skill = KickToward(10.0, 0.0, strong=True)
     assert skill.config != skill._fallback_config   # narrowed for the long kick until it sees the library
     skill._decide(_world_without_pose(), controller, (0.6, 0.0))
