@@ -8,7 +8,8 @@ type-0 stance angles (``gait_types.type_posture``) and the kick's torso lifted b
 stands after the kick on both servers and kicks as far as type 0's (measured 2026-11-28, ``python -m
 motion_studio.realserver.kick_check kick_strong kick_strong_left --type 1 --offsets-cm=-1,-0.5,0,0.5,1,1.5``:
 real 5.49-5.82 m at 10 of 12 placements, 1.2-2.1 m with the ball 0.5 cm short, no fall; ours 5.47-5.52 m from
--0.5 to +1 cm, no fall). Type 3 (a wider hip too) still fell this way (ours 6 of 6, real 7 of 12); its own
+-0.5 to +1 cm, no fall); its own values (``motions/params/kick_type1.toml``) widen that window to -1..+1.5 cm on
+both servers. Type 3 (a wider hip too) still fell this way (ours 6 of 6, real 7 of 12); its own
 values over the section (``motions/params/kick_type3.toml``, found by searches judged on both servers, provenance
 there) make it stand: real 6.0-6.6 m from -1 to +1.5 cm, no fall in 14; ours 5.35-5.52 m, no fall.
 
