@@ -41,8 +41,8 @@ def type_params_path(robot_type: int) -> Path:
     return PARAMS_DIR / f"kick_type{robot_type}.toml"
 
 
-def type_overrides(robot_type: int, path: Path | None = None) -> dict[str, dict[str, object]]:
-    """Section -> the override values of ``robot_type``'s file, ``provenance`` included (empty without a file).
+def type_overrides(robot_type: int, path: Path | None = None) -> dict[str, tuple[dict[str, object], str | None]]:
+    """Section -> (the override values of ``robot_type``'s file, its provenance); empty without a file.
 
     Raises:
         ValueError: bad TOML or an unknown key (names the file and section).
@@ -54,13 +54,8 @@ def type_overrides(robot_type: int, path: Path | None = None) -> dict[str, dict[
         data = tomllib.loads(path.read_text(encoding="utf-8"))
     except tomllib.TOMLDecodeError as error:
         raise ValueError(f"{path}: {error}") from None
-    out = {}
-    for section, table in data.items():
-        values = kick_values(table, f"{path} [{section}]")
-        if "provenance" in table:
-            values["provenance"] = table["provenance"]
-        out[section] = values
-    return out
+    return {section: (kick_values(table, f"{path} [{section}]"), table.get("provenance"))
+            for section, table in data.items()}
 
 
 def build_for_type(robot_type: int, params_path: Path = PARAMS_PATH,
@@ -80,8 +75,7 @@ def build_for_type(robot_type: int, params_path: Path = PARAMS_PATH,
         # The kick's torso height is absolute; the type's stance stands higher by its longer legs.
         params = replace(params, torso_height_m=round(
             params.torso_height_m + stance.torso_height_m - stand.torso_height_m, 4))
-        own = dict(overrides.get(section, {}))
-        provenance = own.pop("provenance", None)
+        own, provenance = overrides.get(section, ({}, None))
         params = replace(params, **own)  # type: ignore[arg-type]
         comments = header("motions.authoring.kick_types", params_path, section, params,
                           f"{COMMAND} {robot_type}")
