@@ -29,6 +29,14 @@ distance credited up to ``--ours-cap-m``), so the kick keeps working here too::
 
     python -m motion_studio.tune_kick kick --backend both --generations 30 --sigma 0.1 --only ...
 
+``--type N`` tunes robot type N's own kick (``motions.authoring.kick_types``: types 1 and 3's long kick): each
+candidate is solved with that type's kinematics from its stance and played from its own ``stand`` by a robot of
+that type on every backend; ``--write`` puts the keys that differ from kick.toml's section into
+``motions/params/kick_type<N>.toml`` (the earlier provenance kept) and regenerates ``motions/files/type<N>/``::
+
+    python -m motion_studio.tune_kick kick_strong --type 3 --backend both --real-placements quick \
+        --only retract_ms,land_ms,recover_ms --generations 10 --write
+
 The run folder (``out/tuning/kick_<section>``, ``_real`` or ``_both`` for those backends: checkpoint, trace
 of every evaluation, plots; ``motion_studio.tuning``) is checkpointed after each generation; the same command
 resumes from it. ``--write`` puts the best parameters into ``motions/params/kick.toml`` (the section of the kick, with
@@ -38,6 +46,7 @@ provenance and measured figures) and regenerates the kick files.
 from __future__ import annotations
 
 import argparse
+import functools
 import json
 import sys
 from collections.abc import Callable, Sequence
@@ -47,16 +56,20 @@ from pathlib import Path
 
 import numpy as np
 
-from agent.motion import MotionLibrary
+from agent.motion import MotionLibrary, default_library
 from kinematics.errors import IKError
 from motion_studio.kick_rollout import KickRun, Placement, run_kick
 from motion_studio.tuning import InProcess, Parameter, Problem, make_backend, subset
+from motion_studio.tuning.errors import TuningError
 from motion_studio.tuning.session import legacy_data, one_line_errors, run_cmaes
 from motion_studio.tuning.params_file import Provenance, toml_value, write_sections
 from motion_studio.tuning.run_folder import best_values, default_run_dir
+from motions.authoring import kick_types
+from motions.authoring.common import KeyframeSolver
 from motions.authoring.gait import GaitParams, build_stance
 from motions.authoring.kick import (COMMON, PARAMS_PATH, KickParams, build_kick, kick_params, parse_kick_params,
                                     stance_params, write_all)
+from motions.model import Motion
 
 #: Placements every candidate is tried from: the nominal spot and errors a positioning skill leaves, as
 #: wide as the kick benchmark draws them (ball +-2 cm along and +-1.5 cm across the kick line, robot heading
@@ -167,29 +180,43 @@ def run_score(run: KickRun, objective: Objective) -> float:
     return score
 
 
-def library_for(params: KickParams, stance: GaitParams, name: str = "kick") -> MotionLibrary:
-    """A library with the candidate kick and the stance (``stand``).
+def library_for(params: KickParams, stance: GaitParams, name: str = "kick", robot_type: int = 0) -> MotionLibrary:
+    """A library with the candidate kick (solved with ``robot_type``'s kinematics) and the stance (``stand``).
 
     Raises:
         kinematics.IKError / ValueError: the candidate cannot be built.
     """
+    solver = KeyframeSolver(robot_type) if robot_type else None
     library = MotionLibrary()
-    library.add(build_kick(name, params, stance))
-    library.add(build_stance("stand", stance))
+    library.add(build_kick(name, params, stance, solver))
+    library.add(type_stand(robot_type) if robot_type else build_stance("stand", stance))
     return library
 
 
-def mujoco_rollout(library: MotionLibrary, motion: str, placement: Placement, seed: int) -> KickRun:
-    """A kick on our simulator (``motion_studio.kick_rollout.run_kick``)."""
-    return run_kick(library, motion, placement, seed=seed)
+@functools.cache
+def type_stand(robot_type: int) -> Motion:
+    """The stance ``robot_type`` plays (its walk's own ``stand`` file): its kick starts from it in a match."""
+    return default_library(robot_type).get("stand")
+
+
+def mujoco_rollout(library: MotionLibrary, motion: str, placement: Placement, seed: int,
+                   robot_type: int = 0) -> KickRun:
+    """A kick on our simulator (``motion_studio.kick_rollout.run_kick``) by a robot of ``robot_type``."""
+    return run_kick(library, motion, placement, seed=seed, robot_type=robot_type)
+
+
+def ours_rollout(robot_type: int) -> Rollout:
+    """:func:`mujoco_rollout` for one robot type."""
+    return mujoco_rollout if robot_type == 0 else partial(mujoco_rollout, robot_type=robot_type)
 
 
 def evaluate(params: KickParams, stance: GaitParams, objective: Objective,
              placements: Sequence[Placement] = PLACEMENTS, seed: int = 0,
-             rollout: Rollout = mujoco_rollout) -> dict[str, object]:
-    """Loss (lower is better) and per-run figures of one candidate; an IK failure is a large loss."""
+             rollout: Rollout = mujoco_rollout, robot_type: int = 0) -> dict[str, object]:
+    """Loss (lower is better) and per-run figures of one candidate (solved with ``robot_type``'s kinematics;
+    ``rollout`` must play that type); an IK failure is a large loss."""
     try:
-        library = library_for(params, stance)
+        library = library_for(params, stance, robot_type=robot_type)
     except (IKError, ValueError) as error:
         return {"loss": 20.0, "error": str(error)[:200], "runs": []}
     runs = [rollout(library, "kick", placement, seed + i) for i, placement in enumerate(placements)]
@@ -199,12 +226,13 @@ def evaluate(params: KickParams, stance: GaitParams, objective: Objective,
 
 
 def evaluate_backends(params: KickParams, stance: GaitParams, objective: Objective,
-                      backends: Sequence[Backend]) -> dict[str, object]:
+                      backends: Sequence[Backend], robot_type: int = 0) -> dict[str, object]:
     """Weighted sum of the candidate's losses on several backends; ``runs`` carry their backend's name."""
     results = {}
     for backend in backends:
         scored = replace(objective, cap_m=backend.cap_m) if backend.cap_m is not None else objective
-        results[backend.name] = evaluate(params, stance, scored, backend.placements, rollout=backend.rollout)
+        results[backend.name] = evaluate(params, stance, scored, backend.placements, rollout=backend.rollout,
+                                         robot_type=robot_type)
     loss = sum(backend.weight * float(results[backend.name]["loss"]) for backend in backends)  # type: ignore[arg-type]
     out: dict[str, object] = {"loss": round(loss, 4), "losses": {name: r["loss"] for name, r in results.items()},
                               "runs": [{**run, "backend": name} for name, r in results.items() for run in r["runs"]]}
@@ -214,12 +242,13 @@ def evaluate_backends(params: KickParams, stance: GaitParams, objective: Objecti
     return out
 
 
-def _evaluate_values(base: dict, stance_values: dict, objective: dict, values: dict[str, float]) -> dict[str, object]:
+def _evaluate_values(base: dict, stance_values: dict, objective: dict, robot_type: int,
+                     values: dict[str, float]) -> dict[str, object]:
     """:func:`evaluate` of the base with ``values`` put in, from plain data (runs in worker processes)."""
     from motions.authoring.gait_params import _gait_values
 
     return evaluate(KickParams(**{**base, **values}), GaitParams(**_gait_values(stance_values, "stance")),
-                    Objective(**objective))
+                    Objective(**objective), rollout=ours_rollout(robot_type), robot_type=robot_type)
 
 
 def _stance_dict(stance: GaitParams) -> dict:
@@ -231,18 +260,20 @@ def _stance_dict(stance: GaitParams) -> dict:
 
 
 def kick_problem(section: str, base: KickParams, stance: GaitParams, dimensions: Sequence[Parameter],
-                 objective: Objective, backends: Sequence[Backend] | None = None) -> Problem:
+                 objective: Objective, backends: Sequence[Backend] | None = None, robot_type: int = 0) -> Problem:
     """The kick as a tuning problem: ``dimensions`` of ``base`` scored by :func:`evaluate` on our simulator
-    from PLACEMENTS, or by :func:`evaluate_backends` (e.g. the real-server bench) with ``backends``."""
+    from PLACEMENTS, or by :func:`evaluate_backends` (e.g. the real-server bench) with ``backends``; the kick is
+    solved with ``robot_type``'s kinematics (``stance`` must be that type's)."""
     if backends:
         def judge(values: dict[str, float]) -> dict[str, object]:
-            return evaluate_backends(replace(base, **values), stance, objective, backends)
+            return evaluate_backends(replace(base, **values), stance, objective, backends, robot_type)
         evaluate_fn: Callable[[dict[str, float]], dict[str, object]] = judge
         rollouts = sum(len(b.placements) for b in backends)
     else:
-        evaluate_fn = partial(_evaluate_values, asdict(base), _stance_dict(stance), asdict(objective))
+        evaluate_fn = partial(_evaluate_values, asdict(base), _stance_dict(stance), asdict(objective), robot_type)
         rollouts = len(PLACEMENTS)
-    return Problem(f"kick:{section}", tuple(dimensions), evaluate_fn,
+    name = f"kick:{section}" + (f":type{robot_type}" if robot_type else "")
+    return Problem(name, tuple(dimensions), evaluate_fn,
                    start={d.name: getattr(base, d.name) for d in dimensions}, fail_loss=20.0,
                    rollouts_per_candidate=rollouts)
 
@@ -250,14 +281,14 @@ def kick_problem(section: str, base: KickParams, stance: GaitParams, dimensions:
 def tune(section: str, base: KickParams, stance: GaitParams, dimensions: Sequence[Parameter], objective: Objective,
          generations: int, checkpoint: Path, workers: int = 1, sigma0: float = 0.15, popsize: int | None = None,
          seed: int = 0, progress: Callable[[str], None] | None = print, backends: Sequence[Backend] | None = None,
-         bar: bool = False) -> dict:
+         bar: bool = False, robot_type: int = 0) -> dict:
     """Run (or resume) CMA-ES from ``base`` in the run folder ``checkpoint``; returns ``best`` (lowest loss,
     whole parameters) and every ``evaluations`` entry.
 
     With ``backends`` (e.g. a real-server bench) the candidates are evaluated one after the other in this
     process (:func:`evaluate_backends`); without, on our simulator from PLACEMENTS in ``workers`` processes.
     """
-    problem = kick_problem(section, base, stance, dimensions, objective, backends)
+    problem = kick_problem(section, base, stance, dimensions, objective, backends, robot_type)
     backend = InProcess() if backends else make_backend("inprocess", workers)
     try:
         result = run_cmaes(problem, checkpoint, generations, sigma0, popsize, seed, backend, progress, bar,
@@ -283,6 +314,26 @@ def write_section(section: str, params: KickParams, provenance: str, measured: s
     body = "\n".join([f"[{section}]"] + [f"{key} = {toml_value(value)}" for key, value in values.items()]) + "\n"
     write_sections(path, {section: body}, lambda written: parse_kick_params(written.read_text(encoding="utf-8"),
                                                                              str(written)))
+
+
+def write_type_section(robot_type: int, section: str, params: KickParams, provenance: str, measured: str,
+                       path: Path | None = None) -> Path:
+    """Rewrite ``[section]`` of ``robot_type``'s override file (``motions/params/kick_type<N>.toml``, made if
+    absent): the keys of ``params`` that differ from kick.toml's section as that type solves it
+    (``kick_types.override_values``), with provenance (the section's earlier provenance kept after it) and
+    measured figures; other sections stay."""
+    path = Path(path or kick_types.type_params_path(robot_type))
+    if not path.is_file():
+        path.write_text(f"# Robot type {robot_type}'s own kicks ({kick_types.__name__}): keys over the same section "
+                        f"of kick.toml, for type {robot_type} only.\n# Units in the key names, as in kick.toml. "
+                        f"Regenerate with: {kick_types.COMMAND} {robot_type}\n", encoding="utf-8")
+    _, before = kick_types.type_overrides(robot_type, path).get(section, ({}, None))
+    if before:  # the keys not tuned keep their values, so their history stays with them
+        provenance = f"{provenance}; started from the values of: {before}"
+    values = {"provenance": provenance, "measured": measured,
+              **kick_types.override_values(robot_type, section, params)}
+    body = "\n".join([f"[{section}]"] + [f"{key} = {toml_value(value)}" for key, value in values.items()]) + "\n"
+    return write_sections(path, {section: body}, lambda written: kick_types.type_overrides(robot_type, written))
 
 
 def measured_note(runs: Sequence[dict]) -> str:
@@ -338,9 +389,26 @@ def main(argv: list[str] | None = None) -> int:
                         help="distance credited at most on our simulator (both) [m]: its ball rolls farther")
     parser.add_argument("--real-workdir", type=Path, default=Path("out/tune_kick_real"),
                         help="the real server's log and monitor frames (--backend real)")
+    parser.add_argument("--type", type=int, default=0, dest="robot_type",
+                        help="robot type whose own kick to tune (kick_types.TYPE_KICKS): solved with its kinematics "
+                             "from its stance, played by that type on both backends; --write puts the keys that "
+                             "differ from kick.toml's section into motions/params/kick_type<N>.toml")
+    parser.add_argument("--params", type=Path, default=None,
+                        help="with --type: the override file --write rewrites (default: the shipped "
+                             "motions/params/kick_type<N>.toml; another file regenerates no motion files)")
     args = parser.parse_args(argv)
-    stance = stance_params()
-    base = kick_params(args.start or args.section)
+    robot_type = args.robot_type
+    if robot_type:
+        own_kicks = sorted(kick_types.TYPE_KICKS)
+        if robot_type not in kick_types.TYPE_KICKS or args.section not in kick_types.TYPE_KICKS[robot_type]:
+            raise TuningError(f"--type {robot_type}: no {args.section} of its own (robot types with their own kicks: "
+                         + ", ".join(f"{t}: {'/'.join(kick_types.TYPE_KICKS[t])}" for t in own_kicks)
+                         + "; the others play type 0's: tune without --type)")
+        stance, _ = kick_types.type_stance(robot_type)
+        base, _, _ = kick_types.type_kick_params(robot_type, args.start or args.section)
+    else:
+        stance = stance_params()
+        base = kick_params(args.start or args.section)
     if args.start_checkpoint is not None:
         if args.start_checkpoint.is_dir():  # a run folder of the tuning room
             base = replace(base, **best_values(args.start_checkpoint))
@@ -350,7 +418,8 @@ def main(argv: list[str] | None = None) -> int:
                           direction_m_per_deg=args.direction_weight)
     real = args.backend != "mujoco"
     suffix = {"mujoco": "", "real": "_real", "both": "_both"}[args.backend]
-    checkpoint = args.checkpoint or default_run_dir(f"kick_{args.section}{suffix}")
+    type_suffix = f"_type{robot_type}" if robot_type else ""
+    checkpoint = args.checkpoint or default_run_dir(f"kick_{args.section}{type_suffix}{suffix}")
     dimensions = SPACE
     if args.only:
         dimensions = subset(SPACE, [name.strip() for name in args.only.split(",") if name.strip()])
@@ -358,17 +427,18 @@ def main(argv: list[str] | None = None) -> int:
         from motion_studio.realserver.rollout_kick import RealKickBench, ensure_private_network
 
         ensure_private_network("motion_studio.tune_kick", list(argv) if argv is not None else sys.argv[1:])
-        with RealKickBench(args.real_workdir) as bench:
+        with RealKickBench(args.real_workdir, robot_type=robot_type) as bench:
             real_placements = REAL_PLACEMENT_SETS[args.real_placements]
             backends = [Backend("real", bench.rollout, real_placements)]
             if args.backend == "both":
                 ours = PLACEMENTS if args.ours_placements == "all" else OURS_CHECK_PLACEMENTS
-                backends.append(Backend("mujoco", mujoco_rollout, ours, args.ours_weight, args.ours_cap_m))
+                backends.append(Backend("mujoco", ours_rollout(robot_type), ours, args.ours_weight,
+                                        args.ours_cap_m))
             data = tune(args.section, base, stance, dimensions, objective, args.generations, checkpoint, 1,
-                        args.sigma, args.popsize, args.seed, backends=backends, bar=True)
+                        args.sigma, args.popsize, args.seed, backends=backends, bar=True, robot_type=robot_type)
     else:
         data = tune(args.section, base, stance, dimensions, objective, args.generations, checkpoint, args.workers,
-                    args.sigma, args.popsize, args.seed, bar=True)
+                    args.sigma, args.popsize, args.seed, bar=True, robot_type=robot_type)
     best = data["best"]
     print(json.dumps(best["result"], indent=1))
     if args.write:
@@ -385,10 +455,18 @@ def main(argv: list[str] | None = None) -> int:
                    f"{' --start-checkpoint ' + str(args.start_checkpoint) if args.start_checkpoint else ''}"
                    f"{' --only ' + args.only if args.only else ''}"
                    f"{' --backend ' + args.backend if real else ''}"
-                   f"{placements_flag}")
+                   f"{placements_flag}{f' --type {robot_type}' if robot_type else ''}")
         provenance = Provenance.now(command).text(f"CMA-ES on {where}")
-        write_section(args.section, KickParams(**best["params"]), provenance, measured)
-        for path in write_all():
+        if robot_type:
+            shipped = kick_types.type_params_path(robot_type)
+            target = write_type_section(robot_type, args.section, KickParams(**best["params"]), provenance,
+                                        measured, args.params or shipped)
+            print(f"wrote {target}")
+            written = kick_types.write_type_kick_files(robot_type) if target.resolve() == shipped.resolve() else []
+        else:
+            write_section(args.section, KickParams(**best["params"]), provenance, measured)
+            written = write_all()
+        for path in written:
             print(f"wrote {path}")
     return 0
 

@@ -20,14 +20,15 @@ from __future__ import annotations
 
 import argparse
 import tomllib
-from dataclasses import replace
+from dataclasses import fields, replace
 from pathlib import Path
 
 from motions.authoring.common import FILES_DIR, PARAMS_DIR, KeyframeSolver, header, write_xml_motions
+from motions.authoring.gait import GaitParams
 from motions.authoring.gait_params import GAIT_PARAMS_PATH, load_gait_params
 from motions.authoring.gait_types import type_posture
-from motions.authoring.kick import (LEFT_SUFFIX, PARAMS_PATH, STANCE_SECTION, build_kick, kick_params, kick_values,
-                                    mirrored_kick)
+from motions.authoring.kick import (LEFT_SUFFIX, PARAMS_PATH, STANCE_SECTION, KickParams, build_kick, kick_params,
+                                    kick_values, mirrored_kick)
 from motions.model import Motion
 
 #: Robot type -> the kick sections solved with its kinematics (the left-foot mirror is written with each).
@@ -58,6 +59,41 @@ def type_overrides(robot_type: int, path: Path | None = None) -> dict[str, tuple
             for section, table in data.items()}
 
 
+def type_stance(robot_type: int, gait_path: Path = GAIT_PARAMS_PATH) -> tuple[GaitParams, GaitParams]:
+    """(``robot_type``'s stance, type 0's): the type's posture from the type-0 stance angles
+    (``gait_types.type_posture``), so a kick starts and ends where that type's walk stands."""
+    stand = load_gait_params(gait_path)[STANCE_SECTION]
+    return replace(stand, **type_posture(robot_type, stand)), stand
+
+
+def type_base_params(robot_type: int, section: str, params_path: Path = PARAMS_PATH,
+                     gait_path: Path = GAIT_PARAMS_PATH) -> KickParams:
+    """``[section]`` of kick.toml for ``robot_type`` before its own overrides: the kick's torso height is
+    absolute, and the type's stance stands higher by its longer legs, so the torso is raised by as much."""
+    stance, stand = type_stance(robot_type, gait_path)
+    params = kick_params(section, params_path)
+    return replace(params, torso_height_m=round(params.torso_height_m + stance.torso_height_m
+                                                - stand.torso_height_m, 4))
+
+
+def type_kick_params(robot_type: int, section: str, params_path: Path = PARAMS_PATH,
+                     gait_path: Path = GAIT_PARAMS_PATH,
+                     overrides_path: Path | None = None) -> tuple[KickParams, dict[str, object], str | None]:
+    """(the parameters ``robot_type`` plays ``section`` with, its override values, their provenance):
+    :func:`type_base_params` with the type's override file over it."""
+    own, provenance = type_overrides(robot_type, overrides_path).get(section, ({}, None))
+    params = replace(type_base_params(robot_type, section, params_path, gait_path), **own)  # type: ignore[arg-type]
+    return params, own, provenance
+
+
+def override_values(robot_type: int, section: str, params: KickParams, params_path: Path = PARAMS_PATH,
+                    gait_path: Path = GAIT_PARAMS_PATH) -> dict[str, object]:
+    """The keys of ``params`` that differ from :func:`type_base_params` (what an override file holds)."""
+    base = type_base_params(robot_type, section, params_path, gait_path)
+    return {f.name: getattr(params, f.name) for f in fields(KickParams)
+            if getattr(params, f.name) != getattr(base, f.name)}
+
+
 def build_for_type(robot_type: int, params_path: Path = PARAMS_PATH,
                    gait_path: Path = GAIT_PARAMS_PATH) -> dict[str, Motion]:
     """The kicks of ``TYPE_KICKS[robot_type]`` and their mirrors for that type: motion name -> Motion.
@@ -65,18 +101,11 @@ def build_for_type(robot_type: int, params_path: Path = PARAMS_PATH,
     Raises:
         KeyError: a type without kicks of its own; kinematics.IKError: a keyframe out of the type's reach.
     """
-    stand = load_gait_params(gait_path)[STANCE_SECTION]
-    stance = replace(stand, **type_posture(robot_type, stand))
+    stance, _ = type_stance(robot_type, gait_path)
     solver = KeyframeSolver(robot_type)
-    overrides = type_overrides(robot_type)
     out: dict[str, Motion] = {}
     for section in TYPE_KICKS[robot_type]:
-        params = kick_params(section, params_path)
-        # The kick's torso height is absolute; the type's stance stands higher by its longer legs.
-        params = replace(params, torso_height_m=round(
-            params.torso_height_m + stance.torso_height_m - stand.torso_height_m, 4))
-        own, provenance = overrides.get(section, ({}, None))
-        params = replace(params, **own)  # type: ignore[arg-type]
+        params, own, provenance = type_kick_params(robot_type, section, params_path, gait_path)
         comments = header("motions.authoring.kick_types", params_path, section, params,
                           f"{COMMAND} {robot_type}")
         note = (f" Robot type {robot_type}: solved with its kinematics; stance posture from the type-0 stance "
@@ -114,7 +143,8 @@ def main(argv: list[str] | None = None) -> int:
     return 0
 
 
-__all__ = ["TYPE_KICKS", "build_for_type", "type_overrides", "type_params_path", "write_type_kick_files"]
+__all__ = ["TYPE_KICKS", "build_for_type", "override_values", "type_base_params", "type_kick_params", "type_overrides",
+           "type_params_path", "type_stance", "write_type_kick_files"]
 
 
 if __name__ == "__main__":
