@@ -29,6 +29,11 @@ sessions), benchmarks/bench_sim.py.
   MuJoCo's limit rows are off. A joint driven into its stop bounces back inside a step later, as the
   real fall trace shows (a hip at 3 rad/s into its 100° stop: 100.24 / 96.81° alternating); MuJoCo's
   soft limit held it past the stop, where every command is ignored (an open-loop turn fell that way).
+  Still different under a kick's load (2026-11-28, the real 8 m kick's commands replayed open loop,
+  tests/sim/test_real_skill_traces.py): both bounce elastically off the stop, but the real support hip pitch was
+  driven 12 deg past its -25 deg stop in one step (the joint inside the stop at the step's start, so no stop row,
+  the motor overpowered against a +1.78 rad/s command) and bounced there for three cycles; ours went past a cycle
+  earlier, by 2.7 deg, and came straight back, 12.6 deg ahead of the real hip from then on (ours then falls).
 * **Contacts.** μ = ∞ in SimSpark (slip only through force-dependent slip and soft ERP/CFM, friction even at
   zero normal force inside ODE's 1 mm surface layer: the real FRP shows 24 N sideways with 0 N normal on a
   lifting foot); here Coulomb μ = 2 at the feet (0.95 on the other body parts, below), condim 3,
