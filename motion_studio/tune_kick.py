@@ -398,12 +398,13 @@ def main(argv: list[str] | None = None) -> int:
                              "motions/params/kick_type<N>.toml; another file regenerates no motion files)")
     args = parser.parse_args(argv)
     robot_type = args.robot_type
+    if args.params is not None and not robot_type:
+        raise TuningError("--params is the override file of --type N; type 0's kicks are written to kick.toml")
     if robot_type:
-        own_kicks = sorted(kick_types.TYPE_KICKS)
-        if robot_type not in kick_types.TYPE_KICKS or args.section not in kick_types.TYPE_KICKS[robot_type]:
+        if args.section not in kick_types.TYPE_KICKS.get(robot_type, ()):
+            own = ", ".join(f"{t}: {'/'.join(kick_types.TYPE_KICKS[t])}" for t in sorted(kick_types.TYPE_KICKS))
             raise TuningError(f"--type {robot_type}: no {args.section} of its own (robot types with their own kicks: "
-                         + ", ".join(f"{t}: {'/'.join(kick_types.TYPE_KICKS[t])}" for t in own_kicks)
-                         + "; the others play type 0's: tune without --type)")
+                              f"{own}; the others play type 0's: tune without --type)")
         stance, _ = kick_types.type_stance(robot_type)
         base, _, _ = kick_types.type_kick_params(robot_type, args.start or args.section)
     else:

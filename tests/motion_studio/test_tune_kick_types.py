@@ -64,6 +64,8 @@ def test_a_type_without_its_own_kick_is_one_line(capsys):
     assert tune_kick.main(["kick_strong", "--type", "2"]) == 2
     error = capsys.readouterr().err.strip()
     assert error.startswith("motion-studio tune kick: error: --type 2: no kick_strong of its own") and "\n" not in error
+    assert tune_kick.main(["kick_strong", "--params", "elsewhere.toml"]) == 2   # type 0 writes kick.toml
+    assert "--params is the override file of --type N" in capsys.readouterr().err
 
 
 def test_a_short_run_on_our_simulator_plays_type_3_and_writes_its_file(tmp_path, capsys):
