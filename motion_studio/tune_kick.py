@@ -37,6 +37,13 @@ that type on every backend; ``--write`` puts the keys that differ from kick.toml
     python -m motion_studio.tune_kick kick_strong --type 3 --backend both --real-placements quick \
         --only retract_ms,land_ms,recover_ms --generations 10 --write
 
+A search stopped early (a long real one, say) is written with ``--write-only`` and the options it ran with
+(its trace keeps its command for the provenance); ``--params FILE`` writes into another parameter file (made from
+the shipped one if missing; no motion files regenerated), e.g. a candidate kept beside the shipped kick::
+
+    python -m motion_studio.tune_kick kick_strong --checkpoint out/tuning/kick_kick_strong_real --write-only \
+        --params motions/params/kick_strong_candidate.toml
+
 The run folder (``out/tuning/kick_<section>``, ``_real`` or ``_both`` for those backends: checkpoint, trace
 of every evaluation, plots; ``motion_studio.tuning``) is checkpointed after each generation; the same command
 resumes from it. ``--write`` puts the best parameters into ``motions/params/kick.toml`` (the section of the kick, with
@@ -63,7 +70,7 @@ from motion_studio.tuning import InProcess, Parameter, Problem, make_backend, su
 from motion_studio.tuning.errors import TuningError
 from motion_studio.tuning.session import legacy_data, one_line_errors, run_cmaes
 from motion_studio.tuning.params_file import Provenance, toml_value, write_sections
-from motion_studio.tuning.run_folder import best_values, default_run_dir
+from motion_studio.tuning.run_folder import best_evaluation, best_values, default_run_dir
 from motions.authoring import kick_types
 from motions.authoring.common import KeyframeSolver
 from motions.authoring.gait import GaitParams, build_stance
@@ -281,7 +288,7 @@ def kick_problem(section: str, base: KickParams, stance: GaitParams, dimensions:
 def tune(section: str, base: KickParams, stance: GaitParams, dimensions: Sequence[Parameter], objective: Objective,
          generations: int, checkpoint: Path, workers: int = 1, sigma0: float = 0.15, popsize: int | None = None,
          seed: int = 0, progress: Callable[[str], None] | None = print, backends: Sequence[Backend] | None = None,
-         bar: bool = False, robot_type: int = 0) -> dict:
+         bar: bool = False, robot_type: int = 0, command: str | None = None) -> dict:
     """Run (or resume) CMA-ES from ``base`` in the run folder ``checkpoint``; returns ``best`` (lowest loss,
     whole parameters) and every ``evaluations`` entry.
 
@@ -292,7 +299,7 @@ def tune(section: str, base: KickParams, stance: GaitParams, dimensions: Sequenc
     backend = InProcess() if backends else make_backend("inprocess", workers)
     try:
         result = run_cmaes(problem, checkpoint, generations, sigma0, popsize, seed, backend, progress, bar,
-                           meta={"objective": asdict(objective)})
+                           meta={"objective": asdict(objective), **({"command": command} if command else {})})
     finally:
         backend.close()
     return legacy_data(result, lambda values: asdict(replace(base, **values)))
@@ -394,12 +401,14 @@ def main(argv: list[str] | None = None) -> int:
                              "from its stance, played by that type on both backends; --write puts the keys that "
                              "differ from kick.toml's section into motions/params/kick_type<N>.toml")
     parser.add_argument("--params", type=Path, default=None,
-                        help="with --type: the override file --write rewrites (default: the shipped "
-                             "motions/params/kick_type<N>.toml; another file regenerates no motion files)")
+                        help="the parameter file --write rewrites (default: the shipped motions/params/kick.toml, or "
+                             "kick_type<N>.toml with --type; another file is made from the shipped one if missing and "
+                             "regenerates no motion files)")
+    parser.add_argument("--write-only", action="store_true",
+                        help="run nothing: write the lowest-loss candidate the run folder's trace holds (a run stopped "
+                             "early); give the options it ran with (the section, --start, --start-checkpoint, --type)")
     args = parser.parse_args(argv)
     robot_type = args.robot_type
-    if args.params is not None and not robot_type:
-        raise TuningError("--params is the override file of --type N; type 0's kicks are written to kick.toml")
     if robot_type:
         if args.section not in kick_types.TYPE_KICKS.get(robot_type, ()):
             own = ", ".join(f"{t}: {'/'.join(kick_types.TYPE_KICKS[t])}" for t in sorted(kick_types.TYPE_KICKS))
@@ -424,52 +433,80 @@ def main(argv: list[str] | None = None) -> int:
     dimensions = SPACE
     if args.only:
         dimensions = subset(SPACE, [name.strip() for name in args.only.split(",") if name.strip()])
-    if real:
-        from motion_studio.realserver.rollout_kick import RealKickBench, ensure_private_network
-
-        ensure_private_network("motion_studio.tune_kick", list(argv) if argv is not None else sys.argv[1:])
-        with RealKickBench(args.real_workdir, robot_type=robot_type) as bench:
-            real_placements = REAL_PLACEMENT_SETS[args.real_placements]
-            backends = [Backend("real", bench.rollout, real_placements)]
-            if args.backend == "both":
-                ours = PLACEMENTS if args.ours_placements == "all" else OURS_CHECK_PLACEMENTS
-                backends.append(Backend("mujoco", ours_rollout(robot_type), ours, args.ours_weight,
-                                        args.ours_cap_m))
-            data = tune(args.section, base, stance, dimensions, objective, args.generations, checkpoint, 1,
-                        args.sigma, args.popsize, args.seed, backends=backends, bar=True, robot_type=robot_type)
+    command = command_line(args)
+    if args.write_only:
+        record = best_evaluation(checkpoint)
+        params, result = replace(base, **record["values"]), record["result"]
+        command = (f"{record.get('command') or 'a run whose trace does not record its command'} (best of generation {record['iteration'] + 1} of a run of "
+                   f"{record['generations']}, written with --write-only)")
     else:
-        data = tune(args.section, base, stance, dimensions, objective, args.generations, checkpoint, args.workers,
-                    args.sigma, args.popsize, args.seed, bar=True, robot_type=robot_type)
-    best = data["best"]
-    print(json.dumps(best["result"], indent=1))
-    if args.write:
-        measured = measured_note(best["result"]["runs"])
-        where = {"mujoco": "our simulator", "real": "the real rcssserver3d 0.7.3",
-                 "both": f"the real rcssserver3d 0.7.3 and our simulator (weight {args.ours_weight}, "
-                         f"cap {args.ours_cap_m} m, placements {args.ours_placements})"}[args.backend]
-        placements_flag = (f" --real-placements {args.real_placements}"
-                           if real and args.real_placements != "narrow" else "")
-        command = (f"motion-studio tune kick {args.section} --generations "
-                   f"{args.generations} --sigma {args.sigma} --cap-m {args.cap_m} --time-weight {args.time_weight} "
-                   f"--direction-weight {args.direction_weight}"
-                   f"{' --start ' + args.start if args.start else ''}"
-                   f"{' --start-checkpoint ' + str(args.start_checkpoint) if args.start_checkpoint else ''}"
-                   f"{' --only ' + args.only if args.only else ''}"
-                   f"{' --backend ' + args.backend if real else ''}"
-                   f"{placements_flag}{f' --type {robot_type}' if robot_type else ''}")
-        provenance = Provenance.now(command).text(f"CMA-ES on {where}")
-        if robot_type:
-            shipped = kick_types.type_params_path(robot_type)
-            target = write_type_section(robot_type, args.section, KickParams(**best["params"]), provenance,
-                                        measured, args.params or shipped)
-            print(f"wrote {target}")
-            written = kick_types.write_type_kick_files(robot_type) if target.resolve() == shipped.resolve() else []
+        if real:
+            from motion_studio.realserver.rollout_kick import RealKickBench, ensure_private_network
+
+            ensure_private_network("motion_studio.tune_kick", list(argv) if argv is not None else sys.argv[1:])
+            with RealKickBench(args.real_workdir, robot_type=robot_type) as bench:
+                real_placements = REAL_PLACEMENT_SETS[args.real_placements]
+                backends = [Backend("real", bench.rollout, real_placements)]
+                if args.backend == "both":
+                    ours = PLACEMENTS if args.ours_placements == "all" else OURS_CHECK_PLACEMENTS
+                    backends.append(Backend("mujoco", ours_rollout(robot_type), ours, args.ours_weight,
+                                            args.ours_cap_m))
+                data = tune(args.section, base, stance, dimensions, objective, args.generations, checkpoint, 1,
+                            args.sigma, args.popsize, args.seed, backends=backends, bar=True, robot_type=robot_type,
+                            command=command)
         else:
-            write_section(args.section, KickParams(**best["params"]), provenance, measured)
-            written = write_all()
-        for path in written:
+            data = tune(args.section, base, stance, dimensions, objective, args.generations, checkpoint,
+                        args.workers, args.sigma, args.popsize, args.seed, bar=True, robot_type=robot_type,
+                        command=command)
+        params, result = KickParams(**data["best"]["params"]), data["best"]["result"]
+        print(json.dumps(result, indent=1))
+    if args.write or args.write_only:
+        for path in write_best(args.section, params, result, command, robot_type, args.params):
             print(f"wrote {path}")
     return 0
+
+
+def command_line(args: argparse.Namespace) -> str:
+    """The command a run's provenance names (the options that shape the search)."""
+    real = args.backend != "mujoco"
+    placements = f" --real-placements {args.real_placements}" if real and args.real_placements != "narrow" else ""
+    both = (f" --ours-weight {args.ours_weight} --ours-cap-m {args.ours_cap_m} --ours-placements {args.ours_placements}"
+            if args.backend == "both" else "")
+    return (f"motion-studio tune kick {args.section} --generations {args.generations} --sigma {args.sigma} "
+            f"--seed {args.seed} --cap-m {args.cap_m} --time-weight {args.time_weight} "
+            f"--direction-weight {args.direction_weight}"
+            f"{' --start ' + args.start if args.start else ''}"
+            f"{' --start-checkpoint ' + str(args.start_checkpoint) if args.start_checkpoint else ''}"
+            f"{' --only ' + args.only if args.only else ''}"
+            f"{' --backend ' + args.backend if real else ''}{placements}{both}"
+            f"{f' --type {args.robot_type}' if args.robot_type else ''}")
+
+
+def write_best(section: str, params: KickParams, result: dict, command: str, robot_type: int = 0,
+               params_path: Path | None = None) -> list[Path]:
+    """Write a search's best into its parameter file (kick.toml, or ``robot_type``'s override file; another file
+    with ``params_path``, made from the shipped one if missing) and regenerate the motion files when it is the
+    shipped one; returns the paths written."""
+    runs = result["runs"]
+    servers = {run.get("backend", "mujoco") for run in runs}
+    where = {frozenset({"mujoco"}): "our simulator", frozenset({"real"}): "the real rcssserver3d 0.7.3"}.get(
+        frozenset(servers), "the real rcssserver3d 0.7.3 and our simulator")
+    provenance = Provenance.now(command).text(f"CMA-ES on {where}")
+    measured = measured_note(runs)
+    if robot_type:
+        shipped = kick_types.type_params_path(robot_type)
+        target = write_type_section(robot_type, section, params, provenance, measured, params_path or shipped)
+    else:
+        shipped = PARAMS_PATH
+        target = Path(params_path or shipped)
+        if not target.is_file():
+            target.write_text(PARAMS_PATH.read_text(encoding="utf-8"), encoding="utf-8")
+        write_section(section, params, provenance, measured, target)
+    if target.resolve() != shipped.resolve():
+        print(f"(not the shipped file: no motion files written; write them with python -m motions.authoring."
+              f"{'kick_types' if robot_type else 'kick --params ' + str(target) + ' --out DIR'})")
+        return [target]
+    return [target, *(kick_types.write_type_kick_files(robot_type) if robot_type else write_all())]
 
 
 if __name__ == "__main__":

@@ -5,6 +5,7 @@ plays it, and --write goes to the type's override file (never to kick.toml, whic
 from __future__ import annotations
 
 import json
+from dataclasses import replace
 
 import pytest
 
@@ -64,8 +65,6 @@ def test_a_type_without_its_own_kick_is_one_line(capsys):
     assert tune_kick.main(["kick_strong", "--type", "2"]) == 2
     error = capsys.readouterr().err.strip()
     assert error.startswith("motion-studio tune kick: error: --type 2: no kick_strong of its own") and "\n" not in error
-    assert tune_kick.main(["kick_strong", "--params", "elsewhere.toml"]) == 2   # type 0 writes kick.toml
-    assert "--params is the override file of --type N" in capsys.readouterr().err
 
 
 def test_a_short_run_on_our_simulator_plays_type_3_and_writes_its_file(tmp_path, capsys):
@@ -82,7 +81,7 @@ def test_a_short_run_on_our_simulator_plays_type_3_and_writes_its_file(tmp_path,
     out = capsys.readouterr().out
     assert f"wrote {target}" in out and "type3/kick_strong.xml" not in out  # not the shipped file
     trace = [json.loads(line) for line in (run / "trace.jsonl").read_text().splitlines()]
-    assert trace[0]["problem"] == "kick:kick_strong:type3"
+    assert trace[0]["problem"] == "kick:kick_strong:type3" and "--only retract_ms,recover_ms --type 3" in trace[0]["command"]
     start = next(r for r in trace if r["kind"] == "evaluation" and r["iteration"] == -1)
     runs = start["result"]["runs"]
     assert len(runs) == len(tune_kick.PLACEMENTS) and not any(r["fell"] for r in runs)
@@ -90,3 +89,35 @@ def test_a_short_run_on_our_simulator_plays_type_3_and_writes_its_file(tmp_path,
     assert "--type 3" in target.read_text(encoding="utf-8")
     assert kick_types.type_params_path(3).read_text(encoding="utf-8") == shipped_before
     assert PARAMS_PATH.read_text(encoding="utf-8") == kick_before
+
+
+def _stopped_run(folder, command: str, values: dict) -> None:
+    """A run folder's trace as the tuning room writes it: the start, then one generation, stopped."""
+    runs = [{"distance_m": 7.9, "direction_error_deg": -4.0, "fell": False, "trapped": False, "backend": "real"}]
+    rows = [{"kind": "run", "problem": "kick:kick_strong", "command": command},
+            {"kind": "evaluation", "iteration": -1, "index": 0, "loss": -5.0, "values": {"retract_ms": 280},
+             "result": {"runs": runs}},
+            {"kind": "evaluation", "iteration": 0, "index": 0, "loss": -9.0, "values": values, "result": {"runs": runs}},
+            {"kind": "iteration", "iteration": 0, "evaluations": 2, "best_loss": -9.0}]
+    folder.mkdir()
+    (folder / "trace.jsonl").write_text("".join(json.dumps(row) + "\n" for row in rows), encoding="utf-8")
+
+
+def test_write_only_puts_a_stopped_run_s_best_into_a_copy_of_kick_toml(tmp_path, capsys):
+    run, target = tmp_path / "run", tmp_path / "kick_candidate.toml"
+    _stopped_run(run, "motion-studio tune kick kick_strong --backend real --only retract_ms", {"retract_ms": 340})
+    kick_before = PARAMS_PATH.read_text(encoding="utf-8")
+    assert tune_kick.main(["kick_strong", "--checkpoint", str(run), "--params", str(target), "--write-only"]) == 0
+    out = capsys.readouterr().out
+    assert f"wrote {target}" in out and "not the shipped file" in out and "kick_strong.xml" not in out
+    assert PARAMS_PATH.read_text(encoding="utf-8") == kick_before
+    from motions.authoring.kick import kick_params
+
+    written = kick_params("kick_strong", target)
+    assert written.retract_ms == 340
+    assert written == replace(kick_params("kick_strong"), retract_ms=340)   # the rest: the shipped section
+    assert kick_params("kick", target) == kick_params("kick")                # the other sections copied
+    text = target.read_text(encoding="utf-8")
+    assert ("motion-studio tune kick kick_strong --backend real --only retract_ms (best of generation 1 of a run of 1, "
+            "written with --write-only)") in text
+    assert "CMA-ES on the real rcssserver3d 0.7.3" in text and "distance 7.90-7.90 m" in text
