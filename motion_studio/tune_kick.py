@@ -380,7 +380,9 @@ def main(argv: list[str] | None = None) -> int:
                         help="comma-separated parameter names: tune only these (the others stay at the start's)")
     parser.add_argument("--checkpoint", type=Path, default=None,
                         help="run folder (checkpoint, trace, plots); default out/tuning/kick_<section>[_real|_both]")
-    parser.add_argument("--write", action="store_true", help="write the best into kick.toml and regenerate")
+    parser.add_argument("--write", action="store_true",
+                        help="write the best into its parameter file (kick.toml; kick_type<N>.toml with --type; or "
+                             "--params) and regenerate the motion files of a shipped one")
     parser.add_argument("--backend", choices=BACKENDS, default="mujoco",
                         help="where the rollouts run: our simulator (default), the real rcssserver3d "
                              "(motion_studio.realserver.rollout_kick, one at a time, REAL_PLACEMENTS), or both "
@@ -503,8 +505,9 @@ def write_best(section: str, params: KickParams, result: dict, command: str, rob
             target.write_text(PARAMS_PATH.read_text(encoding="utf-8"), encoding="utf-8")
         write_section(section, params, provenance, measured, target)
     if target.resolve() != shipped.resolve():
-        print(f"(not the shipped file: no motion files written; write them with python -m motions.authoring."
-              f"{'kick_types' if robot_type else 'kick --params ' + str(target) + ' --out DIR'})")
+        how = (f"copy it over {shipped} and run python -m motions.authoring.kick_types {robot_type}" if robot_type
+               else f"python -m motions.authoring.kick --params {target} --out DIR")
+        print(f"(not the shipped file: no motion files written; to write them: {how})")
         return [target]
     return [target, *(kick_types.write_type_kick_files(robot_type) if robot_type else write_all())]
 
