@@ -42,6 +42,8 @@ HOW = {
     "tune gait walk_forward --generations 20": PARSE,
     "tune gait walk_forward --backend both --lean --robust 8": PARSE,   # needs the real server
     "tune kick kick_strong --backend real --real-placements quick": PARSE,   # needs the real server
+    "tune kick kick_strong --type 3 --backend both": PARSE,   # needs the real server
+    "tune kick kick_strong --write-only --params out/kick_candidate.toml": PARSE,   # needs a run folder
     "motions list": RUN,
     "validate motions/files/kick.xml motions/files/turn_left.motion": RUN,
     "convert motions/files/turn_left.motion out/turn_left.xml": RUN,
