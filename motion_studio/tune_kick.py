@@ -69,13 +69,13 @@ from motion_studio.kick_rollout import KickRun, Placement, run_kick
 from motion_studio.tuning import InProcess, Parameter, Problem, make_backend, subset
 from motion_studio.tuning.errors import TuningError
 from motion_studio.tuning.session import legacy_data, one_line_errors, run_cmaes
-from motion_studio.tuning.params_file import Provenance, toml_value, write_sections
+from motion_studio.tuning.params_file import Provenance, section_text, write_sections
 from motion_studio.tuning.run_folder import best_evaluation, best_values, default_run_dir
 from motions.authoring import kick_types
 from motions.authoring.common import KeyframeSolver
 from motions.authoring.gait import GaitParams, build_stance
-from motions.authoring.kick import (COMMON, PARAMS_PATH, KickParams, build_kick, kick_params, parse_kick_params,
-                                    stance_params, write_all)
+from motions.authoring.kick import (COMMON, PARAMS_PATH, KickParams, build_kick, kick_params, kick_values,
+                                    parse_kick_params, stance_params, write_all)
 from motions.model import Motion
 
 #: Placements every candidate is tried from: the nominal spot and errors a positioning skill leaves, as
@@ -214,7 +214,7 @@ def mujoco_rollout(library: MotionLibrary, motion: str, placement: Placement, se
 
 def ours_rollout(robot_type: int) -> Rollout:
     """:func:`mujoco_rollout` for one robot type."""
-    return mujoco_rollout if robot_type == 0 else partial(mujoco_rollout, robot_type=robot_type)
+    return partial(mujoco_rollout, robot_type=robot_type)
 
 
 def evaluate(params: KickParams, stance: GaitParams, objective: Objective,
@@ -313,14 +313,13 @@ def write_section(section: str, params: KickParams, provenance: str, measured: s
 
     text = path.read_text(encoding="utf-8")
     parse_kick_params(text, str(path))  # the file must be valid before we touch it
-    data = tomllib.loads(text)
-    common = KickParams(**{k: v for k, v in data.get(COMMON, {}).items() if k not in ("provenance", "measured")})
+    common_values = kick_values(tomllib.loads(text).get(COMMON, {}), f"{path} [{COMMON}]")
+    common = KickParams(**common_values)  # type: ignore[arg-type]
     values = {"provenance": provenance, "measured": measured,
               **{f.name: getattr(params, f.name) for f in fields(params)
                  if getattr(params, f.name) != getattr(common, f.name)}}
-    body = "\n".join([f"[{section}]"] + [f"{key} = {toml_value(value)}" for key, value in values.items()]) + "\n"
-    write_sections(path, {section: body}, lambda written: parse_kick_params(written.read_text(encoding="utf-8"),
-                                                                             str(written)))
+    write_sections(path, {section: section_text(section, values)},
+                   lambda written: parse_kick_params(written.read_text(encoding="utf-8"), str(written)))
 
 
 def write_type_section(robot_type: int, section: str, params: KickParams, provenance: str, measured: str,
@@ -339,8 +338,8 @@ def write_type_section(robot_type: int, section: str, params: KickParams, proven
         provenance = f"{provenance}; started from the values of: {before}"
     values = {"provenance": provenance, "measured": measured,
               **kick_types.override_values(robot_type, section, params)}
-    body = "\n".join([f"[{section}]"] + [f"{key} = {toml_value(value)}" for key, value in values.items()]) + "\n"
-    return write_sections(path, {section: body}, lambda written: kick_types.type_overrides(robot_type, written))
+    return write_sections(path, {section: section_text(section, values)},
+                          lambda written: kick_types.type_overrides(robot_type, written))
 
 
 def measured_note(runs: Sequence[dict]) -> str:

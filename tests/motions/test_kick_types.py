@@ -5,7 +5,6 @@ legs, the shipped files equal a fresh generation, and the type plays them (no lo
 from __future__ import annotations
 
 import math
-from dataclasses import replace
 
 import pytest
 
@@ -14,7 +13,7 @@ from agent.motion import default_library
 from kinematics.fk import NaoKinematics
 from motions.authoring.common import FILES_DIR
 from motions.authoring.kick import kick_params
-from motions.authoring.kick_types import TYPE_KICKS, build_for_type, type_overrides
+from motions.authoring.kick_types import TYPE_KICKS, build_for_type, type_kick_params, type_overrides
 from tests.motions.conftest import assert_shipped_as_generated
 
 TYPES = sorted(TYPE_KICKS)
@@ -60,8 +59,7 @@ def test_type_kicks_hold_the_com_over_the_support_sole_of_the_type_s_legs(typed)
     targets by more than a centimetre (the robot fell after every long kick on both servers)."""
     robot_type, built = typed
     fk = NaoKinematics(robot_type)
-    own, _ = type_overrides(robot_type).get("kick_strong", ({}, None))
-    params = replace(kick_params("kick_strong"), **own)
+    params, _, _ = type_kick_params(robot_type, "kick_strong")
     want = (params.com_inset_m, params.com_forward_m)
     shared = kick_params("kick_strong")
     type0 = motions.load(FILES_DIR / "kick_strong.xml")
