@@ -84,7 +84,7 @@ STANDUP_MOTIONS = {"back": "standup_back", "front": "standup_front"}
 #: Motion that rolls a robot lying on its side onto its back (played when the library has it).
 SIDE_ROLL_MOTION = "roll_to_back"
 #: Motion that lays a robot lying on its back straight before its stand-up (played when the library has it and
-#: the robot type is one of FLAT_FIRST_TYPES; roll_to_back ends straight already). Measured on the stand-up
+#: the robot type is one of FLAT_FIRST_TYPES; not after roll_to_back, whose end the back stand-up starts from). Measured on the stand-up
 #: benchmark (motions/params/standup.toml [lie_flat]): type 0's back lies standing within 8 s 12 -> 20 of 20,
 #: median time to stand 2.46 -> 3.25 s.
 FLAT_MOTION = "lie_flat"

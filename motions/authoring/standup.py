@@ -51,8 +51,8 @@ PARAMS_PATH = PARAMS_DIR / "standup.toml"
 #: The stand-ups: motion name = section name; the side the robot lies on.
 STANDUPS: dict[str, str] = {"standup_front": "front", "standup_back": "back"}
 #: Motions made of ground phases only (same section layout, crouch keys unused): a robot lying on its side
-#: rolls onto its back with the arms spread, then pulled in while the legs curl, then laid straight (tried on our
-#: simulator from both sides; a robot already on its back or front stays there); a robot lying on its back lays
+#: rolls onto its back with the arms spread while the hips and knees bend (one keyframe; measured on both servers
+#: from both sides, see the section's provenance); a robot lying on its back lays
 #: its legs and arms straight before its stand-up (lie_flat).
 ROLLS: dict[str, str] = {"roll_to_back": "side", "lie_flat": "back"}
 #: Section of the gait file that holds the walk stance.

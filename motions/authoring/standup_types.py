@@ -23,8 +23,9 @@ Types 1, 2, 3 and 4 have parameter files of their own, ``motions/params/standup_
 <section> --type N``, which solves and plays the candidates as this module writes them). Type 4's holds
 ``standup.toml``'s values from before type 0's back stand-up was retimed (2026-11-27): solved for type 4, the
 retimed ones stood it up after the scripted fall onto its back in 4 of 10 real starts, these in 9 (its header
-has the figures), and a ``[roll_to_back]`` of its own with the 300 ms phases the shared roll had before it was
-shortened to 150 ms (after the faster roll type 4 did not stand on our simulator; the file's provenance). Type 2's
+has the figures); it plays the shared ``roll_to_back`` (its own 300 ms three-phase roll until 2026-11-28). Type 3
+keeps the three-phase roll the shared file had before that day (a ``[roll_to_back]`` of its own: with the one-keyframe
+roll its side lies stood on ours 4 of 10; its provenance). Type 2's
 back stand-up is its own retime of ``standup.toml``'s from before 2026-11-28 (type 0's legs, but type 0's retimed
 one stood a type-2 robot up within 3 s after 4 of 20 real scripted falls onto its back, the one before after 18, its
 own retime after 20; its header and provenance have the figures). Types 1

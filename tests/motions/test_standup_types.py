@@ -52,12 +52,16 @@ def test_type_standups_end_in_the_shared_stand_pose():
             assert target.angle_rad == pytest.approx(stand.targets[wire].angle_rad, abs=math.radians(0.02)), wire
 
 
-def test_type_4_keeps_its_own_slower_roll_to_back():
-    """Type 4's parameter file has a [roll_to_back] of its own (300 ms phases: it did not stand after the shared
-    150 ms roll on our simulator), so its folder gets its own roll; the types without one play the shared roll."""
+def test_type_3_keeps_the_three_phase_roll_to_back_and_the_others_play_the_shared_one():
+    """The shared roll is one keyframe since 2026-11-28 (faster on both servers for types 0, 1, 2 and 4); type 3's
+    parameter file keeps the three-phase roll of before (with the new one its side lies stood on ours 4 of 10), so
+    its folder gets its own roll and the other types' folders none."""
     shared = load(FILES_DIR / "roll_to_back.xml")
-    own = build_for_type(4)["roll_to_back"]
-    assert [k.duration_s for k in own.keyframes] == pytest.approx([0.3, 0.3, 0.3])
-    assert [k.duration_s for k in shared.keyframes] == pytest.approx([0.15, 0.15, 0.15])
-    assert [k.name for k in own.keyframes] == [k.name for k in shared.keyframes]
-    assert "roll_to_back" not in build_for_type(1)
+    own = build_for_type(3)["roll_to_back"]
+    assert [k.name for k in shared.keyframes] == ["roll"]
+    assert [k.name for k in own.keyframes] == ["arms_out", "curl", "flat"]
+    assert [k.duration_s for k in own.keyframes] == pytest.approx([0.15, 0.15, 0.15])
+    for robot_type in (1, 2, 4):
+        assert "roll_to_back" not in build_for_type(robot_type)
+    assert (FILES_DIR / "type3" / "roll_to_back.xml").is_file()
+    assert not (FILES_DIR / "type4" / "roll_to_back.xml").exists()
