@@ -21,7 +21,7 @@ Thresholds (numbers, not tuned curves):
   front stand-up (on our simulator it stands from a front lie turned up to 75 deg about the long axis, the
   back one only up to about 30 deg), one on its side otherwise first plays ``roll_to_back`` (once: still on
   its side after the roll, it plays the stand-up of the side it leans to), one on its back first plays
-  ``lie_flat`` (legs and arms straight, the pose the roll ends in; robot types 0 and 2) and comes to rest
+  ``lie_flat`` (legs and arms straight; robot types 0 and 2) and comes to rest
   again: from other back lies the back stand-up often rose to 0.25 m and fell back, at every retry;
 * success: an upright torso on loaded feet for RECOVERY_CYCLES after the motion; a robot not upright within
   CHECK_TIMEOUT_CYCLES (or lying again) tries again.
@@ -84,9 +84,9 @@ STANDUP_MOTIONS = {"back": "standup_back", "front": "standup_front"}
 #: Motion that rolls a robot lying on its side onto its back (played when the library has it).
 SIDE_ROLL_MOTION = "roll_to_back"
 #: Motion that lays a robot lying on its back straight before its stand-up (played when the library has it and
-#: the robot type is one of FLAT_FIRST_TYPES; not after roll_to_back, whose end the back stand-up starts from). Measured on the stand-up
-#: benchmark (motions/params/standup.toml [lie_flat]): type 0's back lies standing within 8 s 12 -> 20 of 20,
-#: median time to stand 2.46 -> 3.25 s.
+#: the robot type is one of FLAT_FIRST_TYPES; not after roll_to_back, whose end pose the back stand-up starts
+#: from). Measured on the stand-up benchmark (motions/params/standup.toml [lie_flat]): type 0's back lies standing
+#: within 8 s 12 -> 20 of 20, median time to stand 2.46 -> 3.25 s.
 FLAT_MOTION = "lie_flat"
 #: Robot types whose back stand-up starts from lie_flat: 0 and 2 (which plays type 0's stand-ups). Type 4's own
 #: stand-ups gained nothing from it (back lies standing within 8 s 12 -> 11 of 20, 2.48 -> 3.36 s); types 1 and 3
