@@ -57,6 +57,7 @@ import functools
 import json
 import sys
 from collections.abc import Callable, Sequence
+from contextlib import ExitStack
 from dataclasses import asdict, dataclass, fields, replace
 from functools import partial
 from pathlib import Path
@@ -434,30 +435,28 @@ def main(argv: list[str] | None = None) -> int:
     dimensions = SPACE
     if args.only:
         dimensions = subset(SPACE, [name.strip() for name in args.only.split(",") if name.strip()])
-    command = command_line(args)
     if args.write_only:
         record = best_evaluation(checkpoint)
         params, result = replace(base, **record["values"]), record["result"]
-        command = (f"{record.get('command') or 'a run whose trace does not record its command'} (best of generation {record['iteration'] + 1} of a run of "
-                   f"{record['generations']}, written with --write-only)")
+        ran = record.get("command") or "a run whose trace does not record its command"
+        command = (f"{ran} (best of generation {record['iteration'] + 1} of a run of {record['generations']}, "
+                   f"written with --write-only)")
     else:
-        if real:
-            from motion_studio.realserver.rollout_kick import RealKickBench, ensure_private_network
+        command = command_line(args)
+        with ExitStack() as stack:
+            backends, workers = None, args.workers
+            if real:
+                from motion_studio.realserver.rollout_kick import RealKickBench, ensure_private_network
 
-            ensure_private_network("motion_studio.tune_kick", list(argv) if argv is not None else sys.argv[1:])
-            with RealKickBench(args.real_workdir, robot_type=robot_type) as bench:
-                real_placements = REAL_PLACEMENT_SETS[args.real_placements]
-                backends = [Backend("real", bench.rollout, real_placements)]
+                ensure_private_network("motion_studio.tune_kick", list(argv) if argv is not None else sys.argv[1:])
+                bench = stack.enter_context(RealKickBench(args.real_workdir, robot_type=robot_type))
+                backends, workers = [Backend("real", bench.rollout, REAL_PLACEMENT_SETS[args.real_placements])], 1
                 if args.backend == "both":
                     ours = PLACEMENTS if args.ours_placements == "all" else OURS_CHECK_PLACEMENTS
                     backends.append(Backend("mujoco", ours_rollout(robot_type), ours, args.ours_weight,
                                             args.ours_cap_m))
-                data = tune(args.section, base, stance, dimensions, objective, args.generations, checkpoint, 1,
-                            args.sigma, args.popsize, args.seed, backends=backends, bar=True, robot_type=robot_type,
-                            command=command)
-        else:
-            data = tune(args.section, base, stance, dimensions, objective, args.generations, checkpoint,
-                        args.workers, args.sigma, args.popsize, args.seed, bar=True, robot_type=robot_type,
+            data = tune(args.section, base, stance, dimensions, objective, args.generations, checkpoint, workers,
+                        args.sigma, args.popsize, args.seed, backends=backends, bar=True, robot_type=robot_type,
                         command=command)
         params, result = KickParams(**data["best"]["params"]), data["best"]["result"]
         print(json.dumps(result, indent=1))
