@@ -19,7 +19,7 @@ from sim.rules.fouls import FoulRecord, FoulTracker
 from sim.rules.params import (LEFT, PLAY_MODE_INDEX, PLAY_MODES, RIGHT, SIDES, FoulType, RefereeConfig,
                               default_config, in_box, opponent, side_suffix, team_number)
 from sim.rules.pass_mode import PassModeTracker
-from sim.rules.placement import Key, Placer
+from sim.rules.placement import Key, Placer, in_opponent_half
 from sim.rules.roster import Assignment, Roster
 from sim.rules.self_collision import SelfCollisionRule
 from sim.world_api import RobotState, WorldView
@@ -320,7 +320,7 @@ class Referee:
         c = self.config
         self._move_ball(world, (0.0, 0.0, c.ball_radius_m))
         self.paused = True
-        if not c.start_any_field_position:
+        if not c.start_any_field_position and in_opponent_half(self._robots, c):
             placer = self._placer(world)
             sides = list(SIDES)
             self.rng.shuffle(sides)

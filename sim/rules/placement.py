@@ -21,6 +21,32 @@ Key = tuple[str, int]
 _HALF_MARGIN_M = 10.0
 
 
+def half_box(side: str, config: RefereeConfig) -> tuple[float, float, float, float]:
+    """The (oversized) half of the field that belongs to ``side``, as (x_min, x_max, y_min, y_max) [m]."""
+    if side == LEFT:
+        return (-config.half_length_m - _HALF_MARGIN_M, 0.0, -config.half_width_m - _HALF_MARGIN_M,
+                config.half_width_m + _HALF_MARGIN_M)
+    return (0.0, config.half_length_m + _HALF_MARGIN_M, -config.half_width_m - _HALF_MARGIN_M,
+            config.half_width_m + _HALF_MARGIN_M)
+
+
+def overlaps_box(box: tuple[float, float, float, float], x: float, y: float, half_extent: float) -> bool:
+    """Whether a robot's square footprint of ``half_extent`` [m] around (x, y) touches ``box`` (its x edges in
+    either order, as a clearing box may come)."""
+    lo_x, hi_x = (box[0], box[1]) if box[0] <= box[1] else (box[1], box[0])
+    e = half_extent
+    return lo_x <= x + e and x - e <= hi_x and box[2] <= y + e and y - e <= box[3]
+
+
+def in_opponent_half(robots: list[RobotState], config: RefereeConfig) -> bool:
+    """Whether any robot touches the other side's half: the only case where clearing before kick-off moves
+    anyone. Asked first because almost no cycle before kick-off moves a robot, and building the `Placer`
+    (with its shuffles) every such cycle cost a twentieth of a one-robot simulation's time."""
+    e = config.agent_half_extent_m
+    return any(overlaps_box(half_box(opponent(r.team), config), r.torso_pos_m[0], r.torso_pos_m[1], e)
+               for r in robots)
+
+
 class Placer:
     """Moves robots for one referee cycle.
 
@@ -106,24 +132,17 @@ class Placer:
         """Players of ``side`` overlapping ``box`` go FreeKickMoveDist beyond its edge toward their goal."""
         dist = self.config.free_kick_move_dist_m
         e = self.config.agent_half_extent_m
-        lo_x, hi_x = min(box[0], box[1]), max(box[0], box[1])
         pos = self.pos
         for key in self.team(side):
             x, y = pos[key]
-            # _rects_overlap(box, self.rect(key)) inlined: this runs for every robot every paused cycle.
-            if not (lo_x <= x + e and x - e <= hi_x and box[2] <= y + e and y - e <= box[3]):
+            if not overlaps_box(box, x, y, e):
                 continue
             x = box[0] - dist if side == LEFT else box[1] + dist
             self.move(key, x, y)
 
     def half(self, side: str) -> tuple[float, float, float, float]:
         """The (oversized) half of the field that belongs to ``side``."""
-        c = self.config
-        if side == LEFT:
-            return (-c.half_length_m - _HALF_MARGIN_M, 0.0, -c.half_width_m - _HALF_MARGIN_M,
-                    c.half_width_m + _HALF_MARGIN_M)
-        return (0.0, c.half_length_m + _HALF_MARGIN_M, -c.half_width_m - _HALF_MARGIN_M,
-                c.half_width_m + _HALF_MARGIN_M)
+        return half_box(side, self.config)
 
     def clear_before_kick_off(self, kicking: str) -> None:
         """KickOff/Goal clearing: opponents out of the kicking half and the circle, kickers into their half

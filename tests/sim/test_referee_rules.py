@@ -435,3 +435,19 @@ def test_parallel_boxes_never_report_a_self_collision() -> None:
 
     eye = tuple(np.eye(3).ravel())
     assert not boxes_overlap(((0, 0, 0), eye), (0.1, 0.1, 0.1), ((0.01, 0, 0), eye), (0.1, 0.1, 0.1), 0.04)
+
+
+@pytest.mark.parametrize("side, sign", [("left", 1.0), ("right", -1.0)])
+def test_before_kick_off_moves_a_footprint_over_the_centre_line_and_nothing_short_of_it(side: str, sign: float) -> None:
+    """The clearing looks at the robot's square footprint, not its torso point: a torso 1 cm inside its own half
+    whose footprint reaches over the line is pushed back, one whose footprint stops 1 cm short is left alone
+    (the referee skips building its placer when no footprint touches the other half)."""
+    e = default_config().agent_half_extent_m
+    world = FakeWorld()
+    over = world.add(side, 4, -sign * (e - 0.01), 1.0)
+    short = world.add(side, 5, -sign * (e + 0.01), -1.0)
+    referee = Referee(seed=0)
+    run(referee, world, 1)
+    assert sign * over.pos[0] <= -2.5 + 1e-9
+    assert short.pos[:2] == [-sign * (e + 0.01), -1.0]
+    assert [move[:2] for move in world.moves] == [(side, 4)]
