@@ -38,6 +38,7 @@ class Optimizer(Protocol):
 
     name: str
     iteration: int
+    max_iterations: int
 
     def ask(self) -> list[np.ndarray]: ...
 
@@ -122,7 +123,8 @@ def run(problem: Problem, make_optimizer: Callable[[Problem], Optimizer], run_di
 
     Args:
         problem: what is tuned.
-        make_optimizer: builds a fresh optimizer (not called when a checkpoint is resumed).
+        make_optimizer: builds a fresh optimizer; a resumed checkpoint keeps its optimizer's state and takes
+            only the fresh one's ``max_iterations`` (so a finished run can be extended).
         run_dir: the run folder: ``checkpoint.pkl``, ``trace.jsonl`` (and the plots drawn afterwards).
         backend: where candidates run (default: this process).
         max_evaluations: stop after this many evaluations (counted at iteration ends; the start included).
@@ -151,6 +153,9 @@ def run(problem: Problem, make_optimizer: Callable[[Problem], Optimizer], run_di
         optimizer: Optimizer = state["optimizer"]
         if hasattr(optimizer, "attach"):
             optimizer.attach(problem)  # the trust region keeps no functions in its pickle
+        # The iteration budget is this call's, not the pickled one: a finished run resumed with more
+        # generations goes on from where it stopped (it ended at once before, having met its old budget).
+        optimizer.max_iterations = make_optimizer(problem).max_iterations
         done_iterations = optimizer.iteration
         # Keep what the checkpoint covers plus the finished candidates of the iteration it was in.
         records = [r for r in records if r["kind"] != "iteration" or r["iteration"] < done_iterations]

@@ -114,6 +114,18 @@ def test_cmaes_finds_the_minimum_of_a_shifted_bowl_inside_the_box(tmp_path):
     assert result.evaluations == len(seen) and result.iterations == 40
 
 
+def test_a_finished_run_resumed_with_more_iterations_goes_on_where_it_stopped(tmp_path):
+    """Resuming takes the new call's budget: the 5 more iterations continue the first 5 (the same candidates as
+    one run of 10), where the pickled budget of 5 ended the resumed run at once."""
+    short = run(bowl_problem(), lambda p: CMAES(p.x0(), 0.3, seed=2, max_iterations=5), tmp_path / "a")
+    extended = run(bowl_problem(), lambda p: CMAES(p.x0(), 0.3, seed=2, max_iterations=10), tmp_path / "a")
+    whole = run(bowl_problem(), lambda p: CMAES(p.x0(), 0.3, seed=2, max_iterations=10), tmp_path / "b")
+    assert short.iterations == 5 and extended.iterations == 10
+    assert extended.best["loss"] == whole.best["loss"] < short.best["loss"]
+    xs = [r["x"] for r in read_trace(tmp_path / "a" / "trace.jsonl") if r["kind"] == "evaluation"]
+    assert xs == [r["x"] for r in read_trace(tmp_path / "b" / "trace.jsonl") if r["kind"] == "evaluation"]
+
+
 def test_steps_and_bounds_map_to_and_from_the_box():
     duration = Parameter("shift_ms", 300, 700, step=20, unit="ms")
     assert duration.from_unit(0.37) == 440 and isinstance(duration.from_unit(0.37), int)
