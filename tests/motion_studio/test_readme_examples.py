@@ -55,6 +55,7 @@ HOW = {
     "match --players 11 --right baseline --matches 10 --workers 2": PARSE,   # ten 600 s matches: ~1 h
     "bench skills --json": PARSE,
     "bench sim --robots 22 --json": RUN,
+    "bench sim --robots 1 --cycles 1000 --repeat 5": RUN,
     "bench speed": PARSE,   # a 20 s 11 v 11 match: ~15-30 s
     "bench kinematics --json": RUN,
     "bench editor": PARSE,
