@@ -15,7 +15,8 @@ def bench_sim(
     robots: Annotated[int, typer.Option(min=1, max=22, help="number of robots (agents), 1-22")] = 22,
     cycles: Annotated[int, typer.Option(min=1, max=1_000_000, help="timed cycles (20 ms of simulated time each)")] = 500,
     repeat: Annotated[int, typer.Option(min=1, max=100, help=(
-        "timed runs; the figures are the run with the median real-time factor, runs_realtime_factor lists all"))] = 1,
+        "timed runs; the figures are the run with the median real-time factor (the lower middle one of an even "
+        "count), runs_realtime_factor lists all"))] = 1,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object only")] = False,
 ) -> None:
     """Time the simulator: every agent parses its sense message and sends 22 joint commands per cycle.

@@ -63,7 +63,8 @@ def test_a_robot_laid_down_stands_up_by_itself(side, yaw_deg):
 @pytest.mark.parametrize("twist_deg", [90.0, -90.0, 70.0])
 def test_a_robot_laid_on_its_side_rolls_onto_its_back_and_stands_at_the_first_attempt(robot_type, twist_deg):
     """roll_to_back, then standup_back. Measured (2026-11-28, from the lay-down, with the one-keyframe roll): type 0
-    3.22 s lying on either side, type 4 3.24 s (the three-phase roll before: 3.48 and 3.72 s). Before the roll
+    3.22 s lying on either side, 3.10 s with the back stand-up retimed later that day (d1e2bc8), type 4 3.24 s (the
+    three-phase roll before: 3.48 and 3.72 s). Before the roll
     laid its curled legs flat again (motions/params/standup.toml [roll_to_back], the flat phase), standup_back fell
     back from the curl pose every time: 0 stands in 4 attempts in 12 s, and in an 11 v 11 match a robot on its
     side tried for 280 s; the one-keyframe roll bends hips and knees about half as far as that curl."""
