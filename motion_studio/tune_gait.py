@@ -30,6 +30,7 @@ import argparse
 import datetime
 import json
 import math
+import tomllib
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, fields, replace
 from functools import partial
@@ -45,12 +46,12 @@ from motion_studio.tuning.params_file import Provenance, write_file
 from motion_studio.tuning.run_folder import default_run_dir
 from motion_studio.realserver.gait_backend import BACKENDS as REAL_BACKENDS
 from motion_studio.walk_rollout import Push, WalkRun, run_walk
-from motions.authoring.gait import GaitParams, build_walk, write_gait_files
+from motions.authoring.gait import MEASURED_KEYS, GaitParams, build_walk, write_gait_files
 from motions.authoring.gait_params import (GAIT_PARAMS_PATH, dumps_gait_params, load_gait_params, provenance,
                                            read_common, read_header)
 
 #: Direction of each walk in the robot frame (forward, left).
-DIRECTIONS: dict[str, tuple[float, float]] = {"walk_forward": (1.0, 0.0), "walk_backward": (-1.0, 0.0),
+DIRECTIONS: dict[str, tuple[float, float]] = {"walk_forward": (1.0, 0.0), "walk_fast": (1.0, 0.0), "walk_backward": (-1.0, 0.0),
                                               "walk_left": (0.0, 1.0), "walk_right": (0.0, -1.0)}
 
 
@@ -65,6 +66,7 @@ POSTURE = (Parameter("torso_height_m", 0.30, 0.365), Parameter("torso_pitch_deg"
 #: searched only with ``--posture`` (and then moved to [common] with ``--write --common``).
 SPACES: dict[str, tuple[Parameter, ...]] = {
     "walk_forward": (Parameter("step_length_m", 0.04, 0.13),) + SHAPE + (Parameter("arm_swing_deg", 0, 30),),
+    "walk_fast": (Parameter("step_length_m", 0.08, 0.15),) + SHAPE + (Parameter("arm_swing_deg", 0, 30),),
     "walk_backward": (Parameter("step_length_m", -0.09, -0.02),) + SHAPE + (Parameter("torso_pitch_deg", 0.0, 25.0),),
     "walk_left": (Parameter("side_step_m", -0.08, -0.01), Parameter("step_length_m", -0.01, 0.01)) + SHAPE,
     "walk_right": (Parameter("side_step_m", 0.01, 0.08), Parameter("step_length_m", -0.01, 0.01)) + SHAPE,
@@ -84,7 +86,7 @@ class Trial:
 def default_trials(motion: str, quick: bool = False, lean: bool = False) -> tuple[Trial, ...]:
     """A plain run (20 s for the forward walk: the run challenge), a sideways push, a forward push, and with
     ``lean`` full leans both ways (the walk must stay steerable)."""
-    forward = motion == "walk_forward"
+    forward = DIRECTIONS[motion][0] > 0
     long_s = 20.0 if forward else 12.0
     if quick:
         return (Trial(6.0),)
@@ -303,11 +305,18 @@ def write_best(motion: str, best: dict, command: str, params_path: Path = GAIT_P
     if common_keys:
         provenances["common"] = f"posture keys {', '.join(common_keys)} from the tuned {motion} ({date})"
     text = dumps_gait_params(common, table, provenances, read_header(params_path))
-    # Measured figures go into the section as meta keys (copied into the motion's constants).
+    # Measured figures go into the section as meta keys (copied into the motion's constants): the new ones for
+    # ``motion``, the file's own for every other section (dumps_gait_params writes parameters only).
+    raw = tomllib.loads(params_path.read_text(encoding="utf-8"))
+    measured = {name: {key: float(raw.get(name, {})[key]) for key in MEASURED_KEYS if key in raw.get(name, {})}
+                for name in table}
+    measured[motion] = {"measured_forward_m_s": figures["forward_m_s"], "measured_left_m_s": figures["left_m_s"],
+                        "measured_stop_m": figures["stop_m"]}
     lines = text.splitlines()
-    at = lines.index(f"[{motion}]") + 2
-    lines[at:at] = [f"measured_forward_m_s = {figures['forward_m_s']:.4f}", f"measured_left_m_s = {figures['left_m_s']:.4f}",
-                    f"measured_stop_m = {figures['stop_m']:.4f}"]
+    for name, values in measured.items():
+        if values and f"[{name}]" in lines:
+            at = lines.index(f"[{name}]") + 2
+            lines[at:at] = [f"{key} = {value:.4f}" for key, value in values.items()]
     write_file(params_path, "\n".join(lines) + "\n", load_gait_params)
     names = tuple(table) if common_keys else (motion,)
     return write_gait_files(params_path, names=names)
@@ -336,7 +345,7 @@ def measure_type(robot_type: int, names: Sequence[str] | None = None) -> Path:
     import tomllib
 
     from agent.motion import default_library
-    from motions.authoring.gait_params import _toml_value
+    from motions.authoring.toml_text import toml_value
     from motions.authoring.gait_types import WALK_NAMES, type_params_path, write_type_gait_files
 
     path = type_params_path(robot_type)
@@ -358,7 +367,7 @@ def measure_type(robot_type: int, names: Sequence[str] | None = None) -> Path:
              "# Units in the key names; a section's gait keys override the type-0 parameters of gait.toml.",
              f"# Measured keys written by python -m motion_studio.tune_gait --measure-type {robot_type}."]
     for name, section in raw.items():
-        lines += ["", f"[{name}]"] + [f"{key} = {_toml_value(value)}" for key, value in section.items()]
+        lines += ["", f"[{name}]"] + [f"{key} = {toml_value(value)}" for key, value in section.items()]
     write_file(path, "\n".join(lines) + "\n", lambda written: tomllib.loads(written.read_text(encoding="utf-8")))
     write_type_gait_files(robot_type)
     return path

@@ -25,6 +25,8 @@ from motion_studio.scenarios import Scenario, Truth
 from motion_studio.walk_rollout import BALL_AWAY_M, CYCLE_S, Push, apply_due_pushes, make_controller
 
 FORWARD = "walk_forward"
+#: The walks that steer with the walk lean (their scripts change the lean as steering does).
+LEANING = (FORWARD, "walk_fast")
 TURNS = ("turn_left", "turn_right")
 SIDE_WALKS = ("walk_backward", "walk_left", "walk_right")
 
@@ -96,12 +98,12 @@ class ScriptedRequests(Skill):
             self._advance()
             return self.step(world, motion)
         self.cycles += 1
-        if segment.motion == FORWARD and (motion.phase_name or "").startswith("cycle"):
+        if segment.motion in LEANING and (motion.phase_name or "").startswith("cycle"):
             rate = self.script.lean_rate_per_s * CYCLE_S
             self.lean += max(-rate, min(rate, segment.lean - self.lean))
-        elif motion.motion_name != FORWARD or motion.stopping:
+        elif motion.motion_name != segment.motion or motion.stopping:
             self.lean = 0.0
-        return MotionRequest(segment.motion, lean=self.lean if segment.motion == FORWARD else 0.0)
+        return MotionRequest(segment.motion, lean=self.lean if segment.motion in LEANING else 0.0)
 
     def _advance(self) -> None:
         self.index += 1
@@ -186,14 +188,15 @@ def trial_result(label: str, truths: Sequence[Truth | None], phases: Sequence[tu
                        [t for _, t in kept])
 
 
-def _walk_segment(rng: random.Random, low_s: float, high_s: float, lean_change: bool) -> list[Segment]:
+def _walk_segment(rng: random.Random, low_s: float, high_s: float, lean_change: bool,
+                  motion: str = FORWARD) -> list[Segment]:
     """A forward walk of random length, its lean changing at random times (as steering does)."""
     total = rng.uniform(low_s, high_s)
     out = []
     while total > 0.0:
         part = min(total, rng.uniform(0.6, 2.5)) if lean_change else total
         lean = rng.choice((-1.0, -0.5, 0.0, 0.5, 1.0)) if lean_change else 0.0
-        out.append(Segment(FORWARD, part, lean))
+        out.append(Segment(motion, part, lean))
         total -= part
     return out
 
@@ -261,8 +264,9 @@ def transition_script(rng: random.Random, library: MotionLibrary, motion: str = 
     pause = rng.uniform(0.0, 1.0)
     segments.append(Segment(None, pause))
     push_time_s = sum(s.duration_s for s in segments) - pause / 2.0
-    lean_change = motion == FORWARD
-    segments += _walk_segment(rng, 1.0, 3.0, lean_change) if lean_change else [Segment(motion, rng.uniform(1.0, 3.0))]
+    lean_change = motion in LEANING
+    segments += (_walk_segment(rng, 1.0, 3.0, lean_change, motion) if lean_change
+                 else [Segment(motion, rng.uniform(1.0, 3.0))])
     if rng.random() < 0.5:
         segments.append(Segment(None, rng.uniform(0.04, 0.6)))
         segments.append(Segment(motion, rng.uniform(0.6, 1.5)))

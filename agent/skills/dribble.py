@@ -23,7 +23,8 @@ from agent.motion import MotionController, MotionRequest
 from agent.protocol.constants import CYCLE_S
 from agent.skills.avoid import Avoider
 from agent.skills.base import Skill
-from agent.skills.walk import BACKWARD, FORWARD, LEFT, RIGHT, WALKS, WalkConfig, _Steer, report_walk_odometry
+from agent.skills.walk import (BACKWARD, FORWARD, FORWARD_WALKS, LEFT, RIGHT, WALKS, WalkConfig, _Steer,
+                               report_walk_odometry)
 from agent.world.field import GOAL_HALF_WIDTH_M, HALF_LENGTH_M
 from agent.world.frames import wrap_angle_rad
 from agent.world_model import WorldModel
@@ -291,7 +292,7 @@ class Dribble(Skill):
         if distance > (c.near_ball_keep_m if self.mode.startswith("near:") else c.near_ball_m):
             return None
         error_deg = math.degrees(wrap_angle_rad(line_rad - heading_rad))
-        walking_forward = motion.motion_name == FORWARD and not motion.stopping
+        walking_forward = motion.motion_name in FORWARD_WALKS and not motion.stopping
         if abs(error_deg) > c.near_heading_deg:
             if distance >= c.turn_clear_m and self._steer.can_turn(motion):
                 return self._steer.turn(motion, error_deg)

@@ -11,8 +11,8 @@ from dataclasses import dataclass
 from agent.motion import MotionController, MotionRequest
 from agent.skills.avoid import Avoider
 from agent.skills.base import Skill
-from agent.skills.walk import (BACKWARD, CYCLE_S, FORWARD, LEFT, RIGHT, WALKS, WalkConfig, _lean, _Steer,
-                               report_walk_odometry, stop_distance_m)
+from agent.skills.walk import (BACKWARD, CYCLE_S, FAST, FORWARD, FORWARD_WALKS, LEFT, RIGHT, WALKS, WalkConfig,
+                               _lean, _Steer, report_walk_odometry, stop_distance_m)
 from agent.world.frames import Pose2D
 from agent.world_model import WorldModel
 
@@ -129,7 +129,8 @@ class WalkToBall(Skill):
         scale = max(0.0, distance - a.standoff_m) / distance if distance > 1e-6 else 0.0
         to_forward, to_left = forward * scale, left * scale
         if distance > 0.6:
-            if forward <= stop_distance_m(motion, FORWARD) + a.standoff_m and motion.motion_name == FORWARD:
+            walk = motion.motion_name
+            if walk in FORWARD_WALKS and forward <= stop_distance_m(motion, walk) + a.standoff_m:
                 return steer.request(None, head_deg=head)
             if self._avoider is not None:
                 escape = self._avoider.bearing_deg(world, (to_forward, to_left))
@@ -144,13 +145,14 @@ class WalkToBall(Skill):
             name = motion.motion_name
             if name in (LEFT, RIGHT) and forward < a.side_clear_m - 0.03:
                 return steer.request(None, head_deg=head)  # the ball came to the feet: stop before stepping on it
-            remaining = {FORWARD: to_forward, BACKWARD: a.back_to_m - forward, LEFT: left, RIGHT: -left}[name]
+            remaining = {FORWARD: to_forward, FAST: to_forward, BACKWARD: a.back_to_m - forward, LEFT: left,
+                         RIGHT: -left}[name]
             # Walk on while the error exceeds what the walk still covers once stopped (a side walk's stop
             # alone covers about the lateral tolerance, so stopping at a fixed small error overshot and the
             # corrections swung from side to side).
             if remaining > stop_distance_m(motion, name):
                 return steer.request(name, head_deg=head, lean=steer.smooth_lean(motion, _lean(bearing_deg, self.config))
-                                     if name == FORWARD else 0.0)
+                                     if name in FORWARD_WALKS else 0.0)
             return steer.request(None, head_deg=head)
         if not motion.idle and motion.motion_name in WALKS:
             return steer.request(None, head_deg=head)

@@ -126,6 +126,7 @@ CASES: dict[str, Case] = {
     "turn_right": Case("turn_right", lambda: PlayMotion("turn_right", repeat=True), 400),
     "turn_by_90": Case("turn_by_90", lambda: TurnBy(90.0), 400),
     "walk_forward": _walk("walk_forward"),
+    "walk_fast": _walk("walk_fast"),
     "walk_backward": replace(_walk("walk_backward"), position_m=(-3.0, 0.0)),
     "walk_left": replace(_walk("walk_left"), position_m=(-5.0, -4.0)),
     "walk_right": replace(_walk("walk_right"), position_m=(-5.0, 4.0)),
@@ -270,8 +271,8 @@ CASES["walk_to_ball_beside"] = Case(
                           (None, None)),
     STAND_CYCLES + 600, ball_m=(-8.0 + WALK_TO_BALL_BESIDE_M[0], WALK_TO_BALL_BESIDE_M[1]))
 for _case in list(CASES.values()):
-    if _case.motion is None and _case.name in ("stand", "turn_left", "turn_right", "walk_forward", "walk_backward",
-                                               "walk_left", "walk_right"):
+    if _case.motion is None and _case.name in ("stand", "turn_left", "turn_right", "walk_forward", "walk_fast",
+                                               "walk_backward", "walk_left", "walk_right"):
         CASES[_case.name] = replace(_case, motion=_case.name)
 CASES["standup_back"] = replace(CASES["standup_back"], motion="standup_back")
 CASES["standup_front"] = replace(CASES["standup_front"], motion="standup_front")

@@ -9,8 +9,8 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from motion_studio.realserver.cases import CONTROLLED_KICK_M, CYCLE_S, KICK_LINEUP_CM
-from motion_studio.realserver.transfer import (LIES_ON, STANDUP_CASES, WALK_20M, WALK_DIRECTIONS, Pair, Transfer,
-                                               run_name)
+from motion_studio.realserver.transfer import (LIES_ON, STANDUP_CASES, WALK_20M, WALK_20M_CASES, WALK_DIRECTIONS,
+                                               WALK_FAST_20M, Pair, Transfer, run_name)
 from motion_studio.skill_bench.dribble import KEEP_M
 
 #: The dribble cases: (case, what the label calls it).
@@ -21,6 +21,7 @@ _DRIBBLES = (("dribble", "dribble 10 m straight"), ("dribble_turn_left", "dribbl
 SINGLE_ROWS = (
     ("stand", "torso z mean [m]", "stand: torso height [m]"),
     ("walk_forward", "speed [m/s]", "walk forward: speed over 10 s [m/s]"),
+    ("walk_fast", "speed [m/s]", "walk fast: speed over 10 s [m/s]"),
     ("walk_backward", "speed [m/s]", "walk backward: speed over 10 s [m/s]"),
     ("walk_left", "speed [m/s]", "walk left: speed over 10 s [m/s]"),
     ("walk_right", "speed [m/s]", "walk right: speed over 10 s [m/s]"),
@@ -112,16 +113,16 @@ def rows(pairs: list[Pair], figures: dict[str, dict], starts: int, absent: str =
         out.append(Row(f"stand-up {side}: stood 1 s > 0.30 m", counts["real"], counts["ours"],
                        "; ".join(filter(None, [note, no_fall])), len(runs), len(runs)))
         out.append(Row(f"stand-up {side}: median time [s]", times["real"], times["ours"]))
-    if WALK_20M.name in by_name:
-        walk = figures[WALK_20M.name]
-        out.append(Row("20 m forward walk: falls", walk["real"].get("falls", math.nan),
-                       walk["ours"].get("falls", math.nan)))
-        out.append(Row("20 m forward walk: time to 20 m [s]", walk["real"].get("20 m after [s]", math.nan),
-                       walk["ours"].get("20 m after [s]", math.nan)))
-        out.append(Row("20 m forward walk: heading change [deg]", walk["real"].get("heading change [deg]", math.nan),
-                       walk["ours"].get("heading change [deg]", math.nan)))
-    else:
-        out.append(Row("20 m forward walk: falls", math.nan, math.nan, missing(WALK_20M.name)))
+    for case, label in ((WALK_20M, "20 m forward walk"), (WALK_FAST_20M, "20 m fast walk")):
+        if case.name in by_name:
+            walk = figures[case.name]
+            out.append(Row(f"{label}: falls", walk["real"].get("falls", math.nan), walk["ours"].get("falls", math.nan)))
+            out.append(Row(f"{label}: time to 20 m [s]", walk["real"].get("20 m after [s]", math.nan),
+                           walk["ours"].get("20 m after [s]", math.nan)))
+            out.append(Row(f"{label}: heading change [deg]", walk["real"].get("heading change [deg]", math.nan),
+                           walk["ours"].get("heading change [deg]", math.nan)))
+        elif case is WALK_20M:
+            out.append(Row(f"{label}: falls", math.nan, math.nan, missing(case.name)))
     return out
 
 
@@ -205,7 +206,7 @@ def plot(pairs: list[Pair], rows_: list[Row], out_dir: Path) -> list[Path]:
         written.append(out_dir / "transfer_standups.png")
         fig.savefig(written[-1], dpi=110)
         plt.close(fig)
-    walks = [pair for pair in pairs if pair.case.name in (*WALK_DIRECTIONS, WALK_20M.name)]
+    walks = [pair for pair in pairs if pair.case.name in (*WALK_DIRECTIONS, *(c.name for c in WALK_20M_CASES))]
     if walks:
         fig, ax = plt.subplots(figsize=(9, 6))
         for pair in walks:

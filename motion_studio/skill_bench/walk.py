@@ -8,6 +8,8 @@ Trials:
   cycles with both feet off the ground; a fall ends the run and costs 2 m (never below 0).
 * **20 m**: ``walk_forward`` from (-13.5, 0) until the torso has gone 20 m along x: time, speed, falls; then
   the stop through the walk's ``finalize`` (settled = standing still 2 s later; stopping distance).
+* **20 m fast**: the same with ``walk_fast`` (the fast forward walk, issue 14: >= 0.8 m/s aimed) where the
+  library has it.
 * **backward / sideways**: each walk for 12 s from the centre: steady speed, drift, falls, stop.
 * **lean**: ``walk_forward`` at full lean left and right (the ``[walk_lean]`` curve): curvature [deg/m].
 * **walk to**: ``agent.skills.walk.WalkTo`` to points 2-3 m away (localization, not truth): time, final
@@ -23,7 +25,7 @@ import pathlib
 from collections.abc import Callable
 
 from agent.motion import MotionLibrary, default_library
-from agent.skills.walk import WalkTo
+from agent.skills.walk import FAST, WalkTo
 from motion_studio.scenarios import Scenario, Truth
 from motion_studio.walk_rollout import BALL_AWAY_M, CYCLE_S, WalkRun, run_walk
 
@@ -125,7 +127,8 @@ def run(quick: bool = False, seed: int = 0, progress: Callable[[int, int], None]
     ``passed``."""
     library = library or default_library(robot_type)
     walk_to = WALK_TO[:1] if quick else WALK_TO
-    total = 2 + len(SIDE_WALKS) + 2 + len(walk_to)
+    fast = FAST in library
+    total = 2 + int(fast) + len(SIDE_WALKS) + 2 + len(walk_to)
     done = 0
 
     def tick() -> None:
@@ -142,6 +145,11 @@ def run(quick: bool = False, seed: int = 0, progress: Callable[[int, int], None]
                                                 x_limit_m=RUN_START_M[0] + 20.5, seed=seed,
                                                 robot_type=robot_type)
     tick()
+    fast_run = None
+    if fast:
+        fast_run = run_walk(library, FAST, 8.0 if quick else forward_s, position_m=RUN_START_M,
+                            x_limit_m=RUN_START_M[0] + 20.5, seed=seed, robot_type=robot_type)
+        tick()
     sides = {}
     for name in SIDE_WALKS:
         sides[name] = side_walk(run_walk(library, name, SIDE_TIME_QUICK_S if quick else SIDE_TIME_S,
@@ -161,7 +169,9 @@ def run(quick: bool = False, seed: int = 0, progress: Callable[[int, int], None]
     challenge_figures = run_challenge(challenge)
     twenty = twenty_metres(long_run)
     speed = twenty["speed_m_s"] or 0.0
-    falls = twenty["falls"] + sum(s["falls"] for s in sides.values()) + sum(l["falls"] for l in leans.values())
+    fast_twenty = twenty_metres(fast_run) if fast_run is not None else None
+    falls = (twenty["falls"] + (fast_twenty["falls"] if fast_twenty else 0) + sum(s["falls"] for s in sides.values())
+             + sum(l["falls"] for l in leans.values()))
     passed = {
         "speed_floor": (not quick) and speed >= TARGETS["speed_floor_m_s"] and twenty["falls"] == 0,
         "speed_aim": (not quick) and speed >= TARGETS["speed_aim_m_s"] and twenty["falls"] == 0,
@@ -175,6 +185,7 @@ def run(quick: bool = False, seed: int = 0, progress: Callable[[int, int], None]
         "quick": quick, "seed": seed,
         "run_challenge": challenge_figures,
         "forward_20m": twenty,
+        "fast_20m": fast_twenty,
         "side_walks": sides,
         "lean_full": leans,
         "lean_curvature_deg_m": round((leans["left"]["curvature_deg_m"] - leans["right"]["curvature_deg_m"]) / 2, 2),
@@ -207,7 +218,9 @@ def plot(result: dict, out_dir: pathlib.Path) -> list[pathlib.Path]:
     challenge = result["run_challenge"]
     axes[0].set_title(f"type {result.get('robot_type', 0)} run challenge: score {challenge['score']}, "
                       f"speed {challenge['speed_m_s']} m/s, "
-                      f"20 m: {result['forward_20m']['speed_m_s']} m/s, falls {result['falls']}")
+                      f"20 m: {result['forward_20m']['speed_m_s']} m/s"
+                      + (f", fast {result['fast_20m']['speed_m_s']} m/s" if result.get("fast_20m") else "")
+                      + f", falls {result['falls']}")
     axes[1].plot(speed_t, speed)
     axes[1].axhline(TARGETS["speed_floor_m_s"], color="tab:red", linestyle="--", label="floor 0.45 m/s")
     axes[1].axhline(TARGETS["speed_aim_m_s"], color="tab:green", linestyle="--", label="aim 0.70 m/s")

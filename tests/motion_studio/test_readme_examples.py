@@ -41,6 +41,7 @@ HOW = {
     "play motions/files/standup_back.xml --plot out/standup.png --html out/standup.html": RUN,
     "tune gait walk_forward --generations 20": PARSE,
     "tune gait walk_forward --backend both --lean --robust 8": PARSE,   # needs the real server
+    "tune gait walk_fast --backend both --step-cycles 7 --lean --robust 6": PARSE,   # needs the real server
     "tune kick kick_strong --backend real --real-placements quick": PARSE,   # needs the real server
     "tune kick kick_strong --type 3 --backend both": PARSE,   # needs the real server
     "tune kick kick_strong --write-only --params out/kick_candidate.toml": PARSE,   # needs a run folder
@@ -61,6 +62,7 @@ HOW = {
     "bench editor": PARSE,
     "transfer": PARSE,
     "transfer --record out/fix": PARSE,
+    "transfer --case walk_20m --case walk_fast_20m": PARSE,   # needs the real server for its figures
     "real skills turn_left --json out/f.json": PARSE,
     "real skills walk_forward kick dribble --type 4": PARSE,
     "real skills kick_1m kick_2m kick_3m kick_4m": PARSE,

@@ -203,3 +203,28 @@ def test_a_lean_trial_credits_its_path_and_its_curving_not_the_way_ahead():
     assert a["score"] == pytest.approx(0.6, abs=0.02) and a["curvature_deg_m"] == pytest.approx(0.0)
     assert b["along_m"] < a["along_m"] - 0.5 and b["curvature_deg_m"] == pytest.approx(17.0, abs=0.5)
     assert b["score"] == pytest.approx(0.6 + 0.02 * b["curvature_deg_m"], abs=0.02)
+
+
+def test_writing_a_tuned_walk_keeps_every_other_sections_measured_figures(tmp_path, monkeypatch):
+    """``--write`` rewrites the parameter file: the tuned walk gets its new measured figures and every other
+    walk keeps its own (they are copied into the motion files' constants, which the skills' odometry and stop
+    distances read; the writer once dropped them)."""
+    import shutil
+    import tomllib
+
+    from motion_studio import tune_gait
+    from motions.authoring.gait_params import GAIT_PARAMS_PATH, load_gait_params
+
+    params = tmp_path / "gait.toml"
+    shutil.copy(GAIT_PARAMS_PATH, params)
+    before = tomllib.loads(params.read_text(encoding="utf-8"))
+    monkeypatch.setattr(tune_gait, "measure", lambda motion, p: {"forward_m_s": 0.5, "left_m_s": 0.01,
+                                                                 "time_s": 20.0, "fell": False, "stop_m": 0.2})
+    monkeypatch.setattr(tune_gait, "write_gait_files", lambda path, names: [])
+    best = {"params": tune_gait._as_dict(load_gait_params(params)["walk_backward"]), "loss": -0.3}
+    tune_gait.write_best("walk_backward", best, "test", params_path=params)
+    after = tomllib.loads(params.read_text(encoding="utf-8"))
+    assert after["walk_backward"]["measured_forward_m_s"] == 0.5
+    for name in ("walk_forward", "walk_fast", "walk_left", "walk_right"):
+        for key in ("measured_forward_m_s", "measured_left_m_s", "measured_stop_m"):
+            assert after[name][key] == before[name][key], (name, key)

@@ -28,6 +28,16 @@ def test_transition_scripts_cover_every_start_and_walk_the_motion(library):
         assert len(script.pushes) == 1 and math.hypot(script.pushes[0].forward_m_s, script.pushes[0].left_m_s) <= 0.04
 
 
+@pytest.mark.parametrize("walk", ["walk_forward", "walk_fast"])
+def test_the_forward_walks_transition_scripts_change_the_lean_and_the_others_do_not(library, walk):
+    """Both forward walks steer with the walk lean in a match, so their trials change it as steering does."""
+    rng = random.Random(1)
+    leaning = [any(s.lean != 0.0 for s in transition_script(rng, library, walk).segments) for _ in range(20)]
+    assert sum(leaning) >= 10
+    sideways = [s for _ in range(10) for s in transition_script(rng, library, "walk_left").segments]
+    assert all(s.lean == 0.0 for s in sideways)
+
+
 def test_perturbed_walk_moves_only_leg_targets_of_the_walking_phases(library):
     walk = library.get("walk_forward")
     noisy = perturbed(walk, random.Random(1), 0.5)
