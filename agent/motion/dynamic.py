@@ -25,6 +25,7 @@ from dataclasses import dataclass, field, fields
 from pathlib import Path
 
 import motions
+from motions.authoring.toml_text import toml_value
 
 #: The parameter file shipped with the motions.
 DEFAULT_PARAMS_PATH = Path(motions.__file__).resolve().parent / "params" / "dynamic_elements.toml"
@@ -273,27 +274,13 @@ def load_dynamic_params(path: str | Path | None = None) -> DynamicParams:
     return DynamicParams(**built, source=str(path))  # type: ignore[arg-type]
 
 
-def _toml_value(value: object) -> str:
-    if isinstance(value, bool):
-        return "true" if value else "false"
-    if isinstance(value, (int, float)):
-        return repr(float(value)) if isinstance(value, float) else str(value)
-    if isinstance(value, str):
-        return '"' + value.replace("\\", "\\\\").replace('"', '\\"') + '"'
-    if isinstance(value, Mapping):
-        return "{ " + ", ".join(f"{k} = {_toml_value(v)}" for k, v in value.items()) + " }"
-    if isinstance(value, (list, tuple)):
-        return "[" + ", ".join(_toml_value(v) for v in value) + "]"
-    raise TypeError(f"cannot write {value!r} as TOML")
-
-
 def dumps_dynamic_params(params: DynamicParams, header: str) -> str:
     """TOML text of ``params`` with ``header`` (lines written as ``#`` comments) on top."""
     lines = [f"# {line}".rstrip() for line in header.splitlines()]
     for name in ("walk_lean", "slowdown", "turn_gain", "kick_distance"):
         section = getattr(params, name)
         lines += ["", f"[{name}]"]
-        lines += [f"{f.name} = {_toml_value(getattr(section, f.name))}" for f in fields(section)]
+        lines += [f"{f.name} = {toml_value(getattr(section, f.name))}" for f in fields(section)]
     return "\n".join(lines) + "\n"
 
 
