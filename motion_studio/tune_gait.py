@@ -51,8 +51,9 @@ from motions.authoring.gait_params import (GAIT_PARAMS_PATH, dumps_gait_params, 
                                            read_common, read_header)
 
 #: Direction of each walk in the robot frame (forward, left).
-DIRECTIONS: dict[str, tuple[float, float]] = {"walk_forward": (1.0, 0.0), "walk_fast": (1.0, 0.0), "walk_backward": (-1.0, 0.0),
-                                              "walk_left": (0.0, 1.0), "walk_right": (0.0, -1.0)}
+DIRECTIONS: dict[str, tuple[float, float]] = {"walk_forward": (1.0, 0.0), "walk_fast": (1.0, 0.0),
+                                              "walk_backward": (-1.0, 0.0), "walk_left": (0.0, 1.0),
+                                              "walk_right": (0.0, -1.0)}
 
 
 #: Search spaces: gait shape (every walk) and posture (the forward walk's, which the stance shares).
@@ -304,20 +305,14 @@ def write_best(motion: str, best: dict, command: str, params_path: Path = GAIT_P
         f"over {figures['time_s']:.0f} s, fell {figures['fell']}" + (f"; {note}" if note else ""))
     if common_keys:
         provenances["common"] = f"posture keys {', '.join(common_keys)} from the tuned {motion} ({date})"
-    text = dumps_gait_params(common, table, provenances, read_header(params_path))
-    # Measured figures go into the section as meta keys (copied into the motion's constants): the new ones for
-    # ``motion``, the file's own for every other section (dumps_gait_params writes parameters only).
+    # Measured figures: the new ones for ``motion``, the file's own for every other section.
     raw = tomllib.loads(params_path.read_text(encoding="utf-8"))
-    measured = {name: {key: float(raw.get(name, {})[key]) for key in MEASURED_KEYS if key in raw.get(name, {})}
+    measured = {name: {key: float(raw[name][key]) for key in MEASURED_KEYS if key in raw.get(name, {})}
                 for name in table}
     measured[motion] = {"measured_forward_m_s": figures["forward_m_s"], "measured_left_m_s": figures["left_m_s"],
                         "measured_stop_m": figures["stop_m"]}
-    lines = text.splitlines()
-    for name, values in measured.items():
-        if values and f"[{name}]" in lines:
-            at = lines.index(f"[{name}]") + 2
-            lines[at:at] = [f"{key} = {value:.4f}" for key, value in values.items()]
-    write_file(params_path, "\n".join(lines) + "\n", load_gait_params)
+    text = dumps_gait_params(common, table, provenances, read_header(params_path), measured)
+    write_file(params_path, text, load_gait_params)
     names = tuple(table) if common_keys else (motion,)
     return write_gait_files(params_path, names=names)
 
@@ -342,8 +337,6 @@ def measure_type(robot_type: int, names: Sequence[str] | None = None) -> Path:
     """Regenerate the walks of ``robot_type`` (``motions/files/type<N>``), measure them and write their figures
     into its override file (``motions/params/gait_type<N>.toml``, other keys kept), then regenerate them with
     the figures as constants."""
-    import tomllib
-
     from agent.motion import default_library
     from motions.authoring.toml_text import toml_value
     from motions.authoring.gait_types import WALK_NAMES, type_params_path, write_type_gait_files

@@ -19,14 +19,14 @@ from dataclasses import dataclass, field
 from agent.motion import MotionController, MotionLibrary, MotionRequest
 from agent.motion.dynamic import DynamicParams
 from agent.skills.base import Skill
+from agent.skills.walk import FORWARD, FORWARD_WALKS
 from agent.world_model import WorldModel
 from motions.model import Motion
 from motion_studio.scenarios import Scenario, Truth
 from motion_studio.walk_rollout import BALL_AWAY_M, CYCLE_S, Push, apply_due_pushes, make_controller
 
-FORWARD = "walk_forward"
 #: The walks that steer with the walk lean (their scripts change the lean as steering does).
-LEANING = (FORWARD, "walk_fast")
+LEANING = FORWARD_WALKS
 TURNS = ("turn_left", "turn_right")
 SIDE_WALKS = ("walk_backward", "walk_left", "walk_right")
 

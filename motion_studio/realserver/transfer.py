@@ -37,7 +37,8 @@ WALK_20M_DISTANCE_M = 20.0
 
 
 def _walk_20m(name: str, motion: str) -> Case:
-    return Case(name, lambda: SkillSequence((PlayMotion(motion, repeat=True), round(WALK_20M_S / CYCLE_S)), (None, None)),
+    return Case(name, lambda: SkillSequence((PlayMotion(motion, repeat=True), round(WALK_20M_S / CYCLE_S)),
+                                            (None, None)),
                 round((WALK_20M_S + WALK_20M_STOP_S) / CYCLE_S), position_m=(-13.0, 0.0), ball_m=(-14.0, -9.0),
                 recover_falls=True, walk_cycles=round(WALK_20M_S / CYCLE_S), motion=motion)
 

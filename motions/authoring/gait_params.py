@@ -101,8 +101,11 @@ def section_overrides(params: GaitParams, common: GaitParams) -> dict[str, objec
 
 
 def dumps_gait_params(common: GaitParams, sections: Mapping[str, GaitParams],
-                      provenances: Mapping[str, str], header: str) -> str:
-    """TOML text: ``header`` as comments, the full ``[common]`` section, then each motion's differences."""
+                      provenances: Mapping[str, str], header: str,
+                      measured: Mapping[str, Mapping[str, float]] | None = None) -> str:
+    """TOML text: ``header`` as comments, the full ``[common]`` section, then each motion's differences, each
+    after its provenance and its ``measured`` figures (meta keys the motion files copy into their constants,
+    written with 4 decimals as the tuner always has)."""
     lines = [f"# {line}".rstrip() for line in header.splitlines()]
     lines += ["", f"[{COMMON}]"]
     if provenances.get(COMMON):
@@ -112,6 +115,7 @@ def dumps_gait_params(common: GaitParams, sections: Mapping[str, GaitParams],
         lines += ["", f"[{name}]"]
         if provenances.get(name):
             lines.append(f"provenance = {toml_value(provenances[name])}")
+        lines += [f"{key} = {value:.4f}" for key, value in (measured or {}).get(name, {}).items()]
         lines += [f"{key} = {toml_value(value)}" for key, value in section_overrides(params, common).items()]
     return "\n".join(lines) + "\n"
 
