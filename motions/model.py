@@ -67,6 +67,8 @@ class KeyframeSource:
     duration_text: XML ``<duration>`` text; time_text: Webots time token (``00:00:400`` or ``400``).
     value_texts: wire name -> number text as written (degrees in XML, real-Nao radians in Webots).
     target_lines: wire name -> line of the XML effector element.
+    extra_attributes: XML phase attributes outside REFERENCE §6a (FIIT's ``opposite``), in file order: ignored by
+        playback, written back.
     """
 
     line: int | None = None
@@ -75,6 +77,7 @@ class KeyframeSource:
     time_text: str | None = None
     value_texts: Mapping[str, str] = field(default_factory=dict)
     target_lines: Mapping[str, int] = field(default_factory=dict)
+    extra_attributes: tuple[tuple[str, str], ...] = ()
 
 
 @dataclass
@@ -138,6 +141,8 @@ class MotionSource:
     constant_texts: constant name -> value text as written.
     unknown_columns: Webots columns with an unknown joint name (ignored by playback, kept for writing).
     warnings: non-fatal problems found while reading (unknown ``next`` phase, ignored column, ...).
+    low_skill_notes: FIIT's descriptive elements in ``<low_skills>`` (``type``, ``author``, ``extendedFromMove``,
+        ``description``) as (tag, text, inside ``<low_skill>``) in file order: not played, written back.
     """
 
     path: str | None = None
@@ -148,6 +153,7 @@ class MotionSource:
     constant_texts: Mapping[str, str] = field(default_factory=dict)
     unknown_columns: tuple[UnknownColumn, ...] = ()
     warnings: tuple[str, ...] = ()
+    low_skill_notes: tuple[tuple[str, str, bool], ...] = ()
 
 
 @dataclass
@@ -158,7 +164,8 @@ class Motion:
     keyframes: phases or poses in file order.
     source_format: ``"xml"``, ``"webots"`` or None for a motion built in code.
     first_phase: XML ``firstPhase``; None means the first keyframe.
-    constants: XML named numbers (REFERENCE §6a: no reference syntax is known, so they are only carried).
+    constants: XML named numbers, which ``end`` and ``<duration>`` texts may use in arithmetic
+        (``strafe_leg_crouch+30``, as FIIT's files do; ``motions.expressions``).
     joint_order: Webots column order (wire names); None = canonical order of the joints used.
     header_comments: XML comments before ``<robot>`` (how the file was made, DESIGN.md); Webots files have
         no comments.

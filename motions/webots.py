@@ -9,6 +9,14 @@ name is a warning and its column is ignored by playback but kept for writing bac
 (``#WEBOTS_MOTION,V1.0`` alone, joint names on line 2) is read too; the writer always writes the one-line
 header. There are no comments: a ``#`` line after the header is an error, as in Webots.
 
+The older ``V1.1`` layout (Kouretes' and TUC's 2012 agents shipped the NaoQi-era Webots motions in it:
+``StandUpFromFront``, the kicks) is read too: ``#WEBOTS_MOTION,V1.1`` alone on line 1, the joint names on
+line 2 separated by ``%``, then one line per pose ``<state>%<v1>%...%<vn>%<seconds>`` with no time column
+and no pose name: the state word is ``play`` in every known file (another word is a warning, read as
+``play``) and the last field is the pose's duration in seconds. Those files give 0 for most poses, which the
+2012 players (they ignore the column) played in 2 cycles, so 0 reads as ``V11_ZERO_POSE_MS``, with one
+warning per file; poses are named ``Pose1``, ``Pose2``, ... It is written back as ``V1.0``.
+
 Canonical layout: the one-line header, then one line per pose ``mm:ss:mmm,<name>,<v1>,...`` (``00:00:400``),
 values as the shortest decimal that reads back exactly (``1.5``, ``-0.35``; no exponent), ``*`` for
 undefined, LF line endings, a final newline. Time and value texts of a file read elsewhere (``400``,
@@ -30,13 +38,18 @@ from kinematics import nao_rad_to_simspark_rad, simspark_rad_to_nao_rad
 
 from motions.errors import ConversionError, MotionFormatError
 from motions.joints import joint_by_nao_name, joint_by_wire
-from motions.model import WEBOTS, JointTarget, Keyframe, KeyframeSource, Motion, MotionSource, UnknownColumn
+from motions.model import (SERVER_CYCLE_MS, WEBOTS, JointTarget, Keyframe, KeyframeSource, Motion, MotionSource,
+                           UnknownColumn)
 from motions.numbers import is_whole, parse_decimal, shortest_decimal
 
 logger = logging.getLogger(__name__)
 
 MAGIC = "#WEBOTS_MOTION"
 VERSION = "V1.0"
+#: The older layout read besides VERSION (module docstring).
+VERSION_V11 = "V1.1"
+#: A V1.1 pose with a duration of 0 lasts this long [ms]: the 2012 players' 2 cycles per pose (REFERENCE §6b).
+V11_ZERO_POSE_MS = 2 * SERVER_CYCLE_MS
 MAX_LINE_CHARS = 4096
 UNDEFINED = "*"
 _TOKEN_SEPARATORS = re.compile(r"[,\r]")
@@ -76,15 +89,34 @@ class _Reader:
     def error(self, line: int, detail: str, field: str | None, element: str | None = None) -> MotionFormatError:
         return MotionFormatError(detail, path=self.path, line=line, field=field, element=element)
 
-    def line_tokens(self, number: int) -> list[str]:
-        """Tokens of 1-based line ``number`` ([] past the end), after the line-length check."""
+    def line_tokens(self, number: int, separator: str = ",") -> list[str]:
+        """Tokens of 1-based line ``number`` ([] past the end), after the line-length check; ``separator``
+        ``%`` for the V1.1 layout."""
         if number > len(self.lines):
             return []
         line = self.lines[number - 1]
         if len(line.rstrip("\r")) > MAX_LINE_CHARS:
             raise self.error(number, f"line is {len(line.rstrip())} characters long; Webots reads at most "
                              f"{MAX_LINE_CHARS}", "line")
-        return _tokens(line)
+        return _tokens(line) if separator == "," else [t for t in re.split(r"[%\r]", line) if t]
+
+    def v11_pose(self, number: int, tokens: list[str], columns: list[str]) -> tuple[list[str], int]:
+        """Values and duration [ms] of a V1.1 pose line ``<state>%<values>%<seconds>``."""
+        pose = f"Pose{number - 2}"
+        if tokens[0].strip() != "play":
+            self.warnings.append(f"{self.path}:{number}: pose state {tokens[0]!r} read as 'play'")
+            logger.warning(self.warnings[-1])
+        values = tokens[1:]
+        if len(values) not in (len(columns), len(columns) + 1):
+            raise self.error(number, f"expected the state word, {len(columns)} values and the pose's seconds, got "
+                             f"{len(tokens)} fields", "values", f"pose {pose!r}")
+        if len(values) == len(columns):
+            return values, 0
+        seconds = parse_decimal(values[-1].strip())
+        if seconds is None or seconds < 0:
+            raise self.error(number, f"expected the pose's duration in seconds (>= 0), got {values[-1]!r}",
+                             "duration", f"pose {pose!r}")
+        return values[:-1], round(seconds * 1000.0)
 
     def header(self) -> tuple[list[str], int]:
         """Column names and the number of header lines (1, or 2 for the thesis-era layout)."""
@@ -96,8 +128,17 @@ class _Reader:
                              "header")
         if len(tokens) < 2:
             raise self.error(1, f"missing version after {MAGIC}; expected {VERSION}", "version")
+        if tokens[1] == VERSION_V11:
+            if len(tokens) > 2:
+                raise self.error(1, f"a {VERSION_V11} file has the header alone on line 1 and its joint names on "
+                                 f"line 2 (separated by '%'); got {tokens[2]!r} after the version", "version")
+            names = [name for name in self.line_tokens(2, "%") if name.strip()]
+            if not names:
+                raise self.error(2, "no joint names (a V1.1 file names them on line 2, separated by '%')", "header")
+            return [name.strip() for name in names], 2
         if tokens[1] != VERSION:
-            raise self.error(1, f"unsupported version {tokens[1]!r}; only {VERSION} is read", "version")
+            raise self.error(1, f"unsupported version {tokens[1]!r}; {VERSION} and {VERSION_V11} are read",
+                             "version")
         if len(tokens) > 2:
             return tokens[2:], 1
         names = self.line_tokens(2)
@@ -147,7 +188,8 @@ def loads_webots(text: str, path: str = "<string>", name: str | None = None) -> 
         Keyframe per pose with a target (None for ``*``) for every known column.
 
     Raises:
-        MotionFormatError: bad header or version, duplicate joint column, bad or non-increasing time,
+        MotionFormatError: bad header or version (V1.0 and the older V1.1 layout are read), duplicate joint
+            column, bad or non-increasing time, a V1.1 pose without its state word, values and seconds,
             missing pose name, wrong number of values, a value that is neither a number nor ``*``, an
             over-long line, no joints or no poses; each with path, line and field.
     """
@@ -164,17 +206,28 @@ def loads_webots(text: str, path: str = "<string>", name: str | None = None) -> 
         wires.append(None if spec is None else spec.perceptor)
     keyframes: list[Keyframe] = []
     unknown_texts: dict[int, list[str]] = {i: [] for i, w in enumerate(wires) if w is None}
+    v11 = reader.line_tokens(1)[1] == VERSION_V11
+    zero_poses = 0
     previous_ms = -1
     number = header_lines
     while True:
         number += 1
-        tokens = reader.line_tokens(number)
-        if not tokens:
+        tokens = reader.line_tokens(number, "%" if v11 else ",")
+        if not tokens or (v11 and not "".join(tokens).strip()):
             break
-        time_ms, pose = reader.pose(number, tokens, columns, previous_ms)
+        if v11:
+            values, pose_ms = reader.v11_pose(number, tokens, columns)
+            if pose_ms == 0:
+                zero_poses, pose_ms = zero_poses + 1, V11_ZERO_POSE_MS
+            pose, time_text = f"Pose{len(keyframes) + 1}", None
+            time_ms = max(previous_ms, 0) + pose_ms
+        else:
+            time_ms, pose = reader.pose(number, tokens, columns, previous_ms)
+            values, time_text = tokens[2:], tokens[0]
         targets: dict[str, JointTarget] = {}
         texts: dict[str, str] = {}
-        for index, (column, wire, token) in enumerate(zip(columns, wires, tokens[2:])):
+        for index, (column, wire, token) in enumerate(zip(columns, wires, values)):
+            token = token.strip() if v11 else token
             value = reader.value(number, token, column, pose)
             if wire is None:
                 unknown_texts[index].append(token)
@@ -185,8 +238,12 @@ def loads_webots(text: str, path: str = "<string>", name: str | None = None) -> 
                 texts[wire] = token
         duration_s = (time_ms - max(previous_ms, 0)) / 1000.0
         keyframes.append(Keyframe(pose, duration_s, targets,
-                                  source=KeyframeSource(line=number, time_text=tokens[0], value_texts=texts)))
+                                  source=KeyframeSource(line=number, time_text=time_text, value_texts=texts)))
         previous_ms = time_ms
+    if zero_poses:
+        reader.warnings.append(f"{path}:3: {zero_poses} of {len(keyframes)} poses give 0 s: each played in "
+                               f"{V11_ZERO_POSE_MS} ms (the 2012 players' 2 cycles per pose)")
+        logger.warning(reader.warnings[-1])
     if not keyframes:
         raise reader.error(number, "no poses: a Webots motion needs at least one pose line", "time")
     if any(line.strip() for line in reader.lines[number:]):

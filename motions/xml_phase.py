@@ -20,8 +20,20 @@ written ``true``).
 Decisions on points REFERENCE leaves open:
 - ``next`` or ``finalize`` naming no phase is a warning (logged and kept in ``source.warnings``), not an
   error: REFERENCE says the motion then ends after that phase. A ``firstPhase`` naming no phase is an error.
-- ``<duration>`` must be a whole number of milliseconds > 0 (the 2012 agent uses ``Integer.parseInt``, and a
-  controller divides by the duration).
+- ``<duration>`` must be a whole number of milliseconds >= 0; 0 is played as one cycle (20 ms) with a warning.
+
+Files other tools wrote (robocup-fiit's moves, read 2026-11-28: 78 of 111 files broke the stricter reader
+before) are read as FIIT's own loader reads them, each departure from REFERENCE §6a a warning with its line:
+- ``end`` and ``<duration>`` may be arithmetic over the ``<constants>`` (``strafe_leg_crouch+30``,
+  ``-2*strafe_leg_crouch``; ``motions.expressions``); the text is written back while it keeps its value;
+- a phase without ``<effectors>`` holds every joint, as an empty one does;
+- an effector listed twice in a phase: the later one counts (the server applies the later command);
+- a phase name used twice: the later phase replaces the earlier (FIIT keeps phases in a map by name);
+- an attribute outside §6a on ``<phase>`` (FIIT's ``opposite``) is ignored by playback and written back;
+- ``<type>``, ``<author>``, ``<extendedFromMove>`` and ``<description>`` in ``<low_skills>`` (beside or inside
+  ``<low_skill>``) describe the motion: not played, written back where they were;
+- a ``<duration>`` of 0 ms: FIIT's loader rounds every duration up to whole 20 ms cycles, so 0 is one cycle.
+A FIIT move annotation (root ``<annotation>``: a move's preconditions, no phases) is an error that says so.
 - Phase names are matched exactly (the 2012 agent ignores case; two names differing only in case would
   be ambiguous there, so avoid them).
 """
@@ -33,13 +45,18 @@ import math
 
 from motions.errors import ConversionError, MotionFormatError
 from motions.joints import joint_by_effector, joint_by_wire, known_effector_names
-from motions.model import XML, JointTarget, Keyframe, KeyframeSource, Motion, MotionSource
+from motions.model import SERVER_CYCLE_MS, XML, JointTarget, Keyframe, KeyframeSource, Motion, MotionSource
+from motions.expressions import ExpressionError, evaluate
 from motions.numbers import degrees_text_for_rad, is_whole, parse_decimal, parse_integer, shortest_decimal
 from motions.xml_tree import XmlNode, parse_xml
 
 logger = logging.getLogger(__name__)
 
 CANONICAL_DECLARATION = '<?xml version="1.0" encoding="UTF-8"?>'
+#: FIIT's descriptive elements in ``<low_skills>`` (its loader reads them as notes on the move).
+LOW_SKILL_NOTES = ("type", "author", "extendedFromMove", "description")
+#: A phase written with a duration of 0 ms lasts one cycle [ms] (FIIT's loader rounds durations up to cycles).
+ZERO_DURATION_MS = SERVER_CYCLE_MS
 
 # XML attribute name -> Keyframe field, in the canonical (REFERENCE §6a) order.
 PHASE_ATTRIBUTES: dict[str, str] = {
@@ -55,6 +72,8 @@ class _Reader:
     def __init__(self, path: str) -> None:
         self.path = path
         self.warnings: list[str] = []
+        self.constant_values: dict[str, float] = {}
+        self.expression_problem = ""
 
     def error(self, node: XmlNode, detail: str, field: str | None, element: str | None = None) -> MotionFormatError:
         return MotionFormatError(detail, path=self.path, line=node.line, field=field, element=element)
@@ -69,14 +88,34 @@ class _Reader:
             raise self.error(node, f"unexpected text {node.text.strip()!r} in <{node.tag}>", node.tag)
 
     def check_attributes(self, node: XmlNode, allowed: tuple[str, ...], required: tuple[str, ...],
-                         element: str | None = None) -> None:
-        for key, _ in node.attributes:
+                         element: str | None = None, lenient: bool = False) -> tuple[tuple[str, str], ...]:
+        """Raise on a missing required attribute and on one not ``allowed``; with ``lenient`` the latter are
+        warnings instead, and returned (attribute, value) in file order."""
+        extra: list[tuple[str, str]] = []
+        for key, value in node.attributes:
             if key not in allowed:
-                raise self.error(node, f"unknown attribute {key!r}; allowed: {', '.join(allowed)}", key,
-                                 element or node.tag)
+                if not lenient:
+                    raise self.error(node, f"unknown attribute {key!r}; allowed: {', '.join(allowed)}", key,
+                                     element or node.tag)
+                self.warn(node, f"attribute {key}={value!r} of <{node.tag}> is not in the format (allowed: "
+                          f"{', '.join(allowed)}): ignored by playback, written back")
+                extra.append((key, value))
         for key in required:
             if node.attribute(key) is None:
                 raise self.error(node, "missing required attribute", key, element or node.tag)
+        return tuple(extra)
+
+    def number(self, node: XmlNode, text: str) -> float | None:
+        """``text`` as a plain decimal, else as arithmetic over the file's constants; None if neither (the
+        caller names the field)."""
+        value = parse_decimal(text)
+        if value is not None:
+            return value
+        try:
+            return evaluate(text, self.constant_values)
+        except ExpressionError as problem:
+            self.expression_problem = str(problem)
+            return None
 
     def children(self, node: XmlNode, allowed: tuple[str, ...]) -> dict[str, list[XmlNode]]:
         """Children grouped by tag; any other tag is an error naming what is allowed."""
@@ -118,16 +157,26 @@ class _Reader:
             if name in values:
                 raise self.error(constant, f"constant {name!r} is defined twice", "name", "constant")
             values[name], texts[name] = value, text
+        self.constant_values = values
         return values, texts
 
-    def low_skill(self, node: XmlNode) -> tuple[str, str, XmlNode]:
-        skills = self.children(node, ("low_skill",))["low_skill"]
+    def low_skill(self, node: XmlNode) -> tuple[str, str, XmlNode, tuple[tuple[str, str, bool], ...]]:
+        """Name, first phase, the element, and FIIT's descriptive notes (tag, text, inside <low_skill>)."""
+        groups = self.children(node, ("low_skill",) + LOW_SKILL_NOTES)
+        skills = groups["low_skill"]
         if len(skills) > 1:
             raise self.error(skills[1], "only one <low_skill> per file is allowed", "low_skill")
         skill = self.required(node, skills, "low_skill")
-        self.no_text(skill)
+        self.children(skill, LOW_SKILL_NOTES)  # only notes inside it
+        notes = [(child.tag, self.note_text(child), True) for child in skill.children]
+        notes += [(child.tag, self.note_text(child), False) for child in node.children if child.tag != "low_skill"]
         self.check_attributes(skill, ("name", "firstPhase"), ("name", "firstPhase"))
-        return skill.attribute("name") or "", skill.attribute("firstPhase") or "", skill
+        return skill.attribute("name") or "", skill.attribute("firstPhase") or "", skill, tuple(notes)
+
+    def note_text(self, node: XmlNode) -> str:
+        self.no_text_children(node)
+        self.check_attributes(node, (), ())
+        return node.text
 
     def target(self, node: XmlNode, phase_name: str) -> tuple[str, JointTarget, str]:
         spec = joint_by_effector(node.tag)
@@ -137,9 +186,10 @@ class _Reader:
         self.no_text(node)
         self.check_attributes(node, ("end", "computed"), ("end",))
         text = node.attribute("end") or ""
-        angle_deg = parse_decimal(text)
+        angle_deg = self.number(node, text)
         if angle_deg is None:
-            raise self.error(node, f"expected a number, got {text!r}", "end", node.tag)
+            raise self.error(node, f"expected a number or arithmetic over the constants, got {text!r} "
+                             f"({self.expression_problem})", "end", node.tag)
         return spec.perceptor, JointTarget(math.radians(angle_deg), node.attribute("computed")), text
 
     def duration(self, node: XmlNode, phase_name: str) -> float:
@@ -148,12 +198,23 @@ class _Reader:
         element = f"phase {phase_name!r}"
         milliseconds = parse_integer(text)
         if milliseconds is None:
-            what = "a whole number of" if parse_decimal(text) is not None else "a number of"
-            raise self.error(node, f"expected {what} milliseconds, got {text!r}", "duration", element)
+            if parse_decimal(text) is not None:
+                raise self.error(node, f"expected a whole number of milliseconds, got {text!r}", "duration",
+                                 element)
+            value = self.number(node, text)
+            if value is None:
+                raise self.error(node, f"expected a number of milliseconds or arithmetic over the constants, got "
+                                 f"{text!r} ({self.expression_problem})", "duration", element)
+            if not is_whole(value):
+                raise self.error(node, f"expected a whole number of milliseconds, got {text!r} = {value:g}",
+                                 "duration", element)
+            milliseconds = round(value)
         if milliseconds < 0:
             raise self.error(node, f"duration must not be negative, got {text!r}", "duration", element)
         if milliseconds == 0:
-            raise self.error(node, "duration must be at least 1 ms, got 0", "duration", element)
+            self.warn(node, f"phase {phase_name!r}: duration 0 ms is played as one cycle ({ZERO_DURATION_MS} ms), "
+                      "as FIIT's loader plays it")
+            return ZERO_DURATION_MS / 1000.0
         return milliseconds / 1000.0
 
     def no_text_children(self, node: XmlNode) -> None:
@@ -162,20 +223,23 @@ class _Reader:
                              node.children[0].tag)
 
     def phase(self, node: XmlNode) -> Keyframe:
-        self.check_attributes(node, tuple(PHASE_ATTRIBUTES), ("name",), "phase")
+        extra = self.check_attributes(node, tuple(PHASE_ATTRIBUTES), ("name",), "phase", lenient=True)
         name = node.attribute("name") or ""
         parts = self.children(node, ("effectors", "duration", "finalize"))
-        effectors = self.required(node, parts["effectors"], "effectors")
+        effectors = self.optional(node, parts["effectors"], "effectors")
         duration_node = self.required(node, parts["duration"], "duration")
         finalize_node = self.optional(node, parts["finalize"], "finalize")
-        self.no_text(effectors)
         targets: dict[str, JointTarget] = {}
         texts: dict[str, str] = {}
         lines: dict[str, int] = {}
-        for child in effectors.children:
+        if effectors is not None:
+            self.no_text(effectors)
+        for child in effectors.children if effectors is not None else ():
             wire, target, text = self.target(child, name)
             if wire in targets:
-                raise self.error(child, f"<{child.tag}> is listed twice in phase {name!r}", child.tag)
+                self.warn(child, f"<{child.tag}> is listed twice in phase {name!r} (first on line {lines[wire]}): "
+                          "the later one counts")
+                del targets[wire]  # the later one also takes the later place in the phase
             targets[wire], texts[wire], lines[wire] = target, text, child.line
         is_final_text = node.attribute("isFinal")
         is_final = None
@@ -188,7 +252,8 @@ class _Reader:
             self.no_text_children(finalize_node)
             finalize = finalize_node.text.strip()
         source = KeyframeSource(line=node.line, attribute_order=tuple(k for k, _ in node.attributes),
-                                duration_text=duration_node.text, value_texts=texts, target_lines=lines)
+                                duration_text=duration_node.text, value_texts=texts, target_lines=lines,
+                                extra_attributes=extra)
         return Keyframe(name=name, duration_s=self.duration(duration_node, name), targets=targets,
                         next=node.attribute("next"), finalize=finalize, is_final=is_final,
                         skip_if_flag=node.attribute("skipIfFlag"), set_flag_true=node.attribute("setFlagTrue"),
@@ -198,16 +263,17 @@ class _Reader:
         nodes = self.children(node, ("phase",))["phase"]
         if not nodes:
             raise self.error(node, "<phases> holds no <phase>", "phase")
-        keyframes: list[Keyframe] = []
-        first_line: dict[str, int] = {}
+        read: dict[str, tuple[XmlNode, Keyframe]] = {}
         for phase_node in nodes:
             keyframe = self.phase(phase_node)
-            if keyframe.name in first_line:
-                raise self.error(phase_node, f"phase name {keyframe.name!r} is already used on line "
-                                 f"{first_line[keyframe.name]}", "name", "phase")
-            first_line[keyframe.name] = phase_node.line
-            keyframes.append(keyframe)
-        for phase_node, keyframe in zip(nodes, keyframes):
+            if keyframe.name in read:
+                self.warn(phase_node, f"phase name {keyframe.name!r} is already used on line "
+                          f"{read[keyframe.name][0].line}: this later phase replaces it")
+                del read[keyframe.name]
+            read[keyframe.name] = (phase_node, keyframe)
+        first_line = {name: phase_node.line for name, (phase_node, _) in read.items()}
+        keyframes = [keyframe for _, keyframe in read.values()]
+        for phase_node, keyframe in read.values():
             if keyframe.next is not None and keyframe.next not in first_line:
                 self.warn(phase_node, f"phase {keyframe.name!r}: next={keyframe.next!r} names no phase; the motion "
                           "ends after this phase")
@@ -229,12 +295,17 @@ def loads_xml(text: str, path: str = "<string>") -> Motion:
 
     Raises:
         MotionFormatError: not well-formed XML, wrong structure, missing ``low_skill``/``firstPhase``,
-            ``firstPhase`` naming no phase, duplicate phase names, unknown effector, non-numeric ``end``,
-            bad or non-positive ``duration``; each with path, line and field.
+            ``firstPhase`` naming no phase, unknown effector, an ``end`` that is neither a number nor arithmetic
+            over the constants, a negative or fractional ``duration``, a FIIT move annotation; each with path,
+            line and field. (What FIIT's own loader accepts beyond REFERENCE §6a is read with a warning: module
+            docstring.)
     """
     document = parse_xml(text, path)
     reader = _Reader(path)
     root = document.root
+    if root.tag == "annotation":
+        raise reader.error(root, "this is a FIIT move annotation (a move's preconditions and effects), not a motion: "
+                           "the motion is the XML file with a <robot> root of the same move", root.tag)
     if root.tag != "robot":
         raise reader.error(root, f"the root element must be <robot>, got <{root.tag}>", root.tag)
     parts = reader.children(root, ("constants", "low_skills", "phases"))
@@ -242,7 +313,7 @@ def loads_xml(text: str, path: str = "<string>") -> Motion:
     skills_node = reader.required(root, parts["low_skills"], "low_skills")
     phases_node = reader.required(root, parts["phases"], "phases")
     constants, constant_texts = reader.constants(constants_node)
-    name, first_phase, skill_node = reader.low_skill(skills_node)
+    name, first_phase, skill_node, notes = reader.low_skill(skills_node)
     keyframes = reader.phases(phases_node)
     if first_phase not in {k.name for k in keyframes}:
         raise reader.error(skill_node, f"firstPhase {first_phase!r} names no phase; phases: "
@@ -250,7 +321,7 @@ def loads_xml(text: str, path: str = "<string>") -> Motion:
     source = MotionSource(path=path, line_ending="\r\n" if "\r\n" in text else "\n",
                           final_newline=text.endswith("\n"), xml_declaration=document.declaration,
                           root_attributes=tuple(root.attributes), constant_texts=constant_texts,
-                          warnings=tuple(reader.warnings))
+                          warnings=tuple(reader.warnings), low_skill_notes=notes)
     return Motion(name=name, keyframes=keyframes, source_format=XML, first_phase=first_phase,
                   constants=constants, header_comments=tuple(document.prolog_comments), source=source)
 
@@ -271,7 +342,18 @@ def _attributes(pairs: list[tuple[str, str]]) -> str:
     return "".join(f' {key}="{_attribute_text(value)}"' for key, value in pairs)
 
 
-def _duration_text(keyframe: Keyframe) -> str:
+def _value_of(text: str, constants: dict[str, float]) -> float | None:
+    """A number text as read (a decimal, or arithmetic over the constants); None if it no longer reads."""
+    value = parse_decimal(text)
+    if value is not None:
+        return value
+    try:
+        return evaluate(text, constants)
+    except ExpressionError:
+        return None
+
+
+def _duration_text(keyframe: Keyframe, constants: dict[str, float]) -> str:
     milliseconds = keyframe.duration_s * 1000.0
     if not (math.isfinite(milliseconds) and is_whole(milliseconds) and round(milliseconds) >= 1):
         raise ConversionError(f"an XML phase lasts a whole number of milliseconds >= 1, got {milliseconds!r} ms "
@@ -279,24 +361,25 @@ def _duration_text(keyframe: Keyframe) -> str:
                               field="duration", element=f"phase {keyframe.name!r}")
     whole = round(milliseconds)
     old = keyframe.source.duration_text if keyframe.source else None
-    return old if old is not None and parse_integer(old) == whole else str(whole)
+    return old if old is not None and _value_of(old, constants) == whole else str(whole)
 
 
-def _end_text(keyframe: Keyframe, wire: str, angle_rad: float) -> str:
+def _end_text(keyframe: Keyframe, wire: str, angle_rad: float, constants: dict[str, float]) -> str:
     old = keyframe.source.value_texts.get(wire) if keyframe.source else None
     if old is not None:
-        old_deg = parse_decimal(old)
+        old_deg = _value_of(old, constants)
         if old_deg is not None and math.radians(old_deg) == angle_rad:
             return old
     return degrees_text_for_rad(angle_rad)
 
 
-def _phase_lines(keyframe: Keyframe) -> list[str]:
+def _phase_lines(keyframe: Keyframe, constants: dict[str, float]) -> list[str]:
     values = {attr: getattr(keyframe, name) for attr, name in PHASE_ATTRIBUTES.items()}
     values["isFinal"] = None if keyframe.is_final is None else ("true" if keyframe.is_final else "false")
     order = [a for a in (keyframe.source.attribute_order if keyframe.source else ()) if a in PHASE_ATTRIBUTES]
     order += [a for a in PHASE_ATTRIBUTES if a not in order]
     pairs = [(a, values[a]) for a in order if values[a] is not None]
+    pairs += list(keyframe.source.extra_attributes) if keyframe.source else []
     lines = [f"\t\t<phase{_attributes(pairs)}>"]
     effector_lines = []
     for wire, target in keyframe.targets.items():
@@ -312,7 +395,7 @@ def _phase_lines(keyframe: Keyframe) -> list[str]:
         if not math.isfinite(target.angle_rad):
             raise ConversionError(f"angle must be finite, got {target.angle_rad!r}", field=spec.effector,
                                   element=f"phase {keyframe.name!r}")
-        attrs = [("end", _end_text(keyframe, wire, target.angle_rad))]
+        attrs = [("end", _end_text(keyframe, wire, target.angle_rad, constants))]
         if target.computed is not None:
             attrs.append(("computed", target.computed))
         effector_lines.append(f"\t\t\t\t<{spec.effector}{_attributes(attrs)} />")
@@ -320,7 +403,7 @@ def _phase_lines(keyframe: Keyframe) -> list[str]:
         lines += ["\t\t\t<effectors>", *effector_lines, "\t\t\t</effectors>"]
     else:
         lines.append("\t\t\t<effectors />")
-    lines.append(f"\t\t\t<duration>{_element_text(_duration_text(keyframe))}</duration>")
+    lines.append(f"\t\t\t<duration>{_element_text(_duration_text(keyframe, constants))}</duration>")
     if keyframe.finalize is not None:
         lines.append(f"\t\t\t<finalize>{_element_text(keyframe.finalize)}</finalize>")
     lines.append("\t\t</phase>")
@@ -363,11 +446,15 @@ def dumps_xml(motion: Motion) -> str:
             text = old if old is not None and parse_decimal(old) == value else shortest_decimal(value)
             lines.append(f"\t\t<constant{_attributes([('name', name), ('value', text)])} />")
         lines += ["\t</constants>", ""]
-    lines += ["\t<low_skills>",
-              f"\t\t<low_skill{_attributes([('name', motion.name), ('firstPhase', first_phase)])} />",
-              "\t</low_skills>", "", "\t<phases>"]
+    skill_attributes = _attributes([('name', motion.name), ('firstPhase', first_phase)])
+    inside = [f"\t\t\t<{tag}>{_element_text(text)}</{tag}>" for tag, text, within in source.low_skill_notes if within]
+    beside = [f"\t\t<{tag}>{_element_text(text)}</{tag}>" for tag, text, within in source.low_skill_notes if not within]
+    skill_lines = ([f"\t\t<low_skill{skill_attributes}>", *inside, "\t\t</low_skill>"] if inside
+                   else [f"\t\t<low_skill{skill_attributes} />"])
+    lines += ["\t<low_skills>", *skill_lines, *beside, "\t</low_skills>", "", "\t<phases>"]
+    constants = dict(motion.constants)
     for keyframe in motion.keyframes:
-        lines += _phase_lines(keyframe)
+        lines += _phase_lines(keyframe, constants)
     lines += ["\t</phases>", "</robot>"]
     text = "\n".join(lines) + ("\n" if source.final_newline else "")
     return text.replace("\n", source.line_ending) if source.line_ending != "\n" else text

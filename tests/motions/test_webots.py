@@ -182,8 +182,15 @@ def test_bad_header(first_line):
 
 
 def test_unsupported_version():
+    error = _error("#WEBOTS_MOTION,V2.0,HeadYaw\n00:00:000,A,1\n")
+    assert (error.line, error.field) == (1, "version")
+    assert "V1.0 and V1.1 are read" in str(error)
+
+
+def test_a_v1_1_header_with_the_names_on_its_own_line_is_an_error():
     error = _error("#WEBOTS_MOTION,V1.1,HeadYaw\n00:00:000,A,1\n")
     assert (error.line, error.field) == (1, "version")
+    assert "line 2" in str(error)
 
 
 def test_comment_line_after_header():

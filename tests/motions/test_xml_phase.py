@@ -133,7 +133,8 @@ def _error(text: str) -> MotionFormatError:
 def test_bad_number_names_path_line_field():
     error = _error(_phase_file('<lle3 end="abc"/>'))
     assert (error.path, error.line, error.field) == ("walk.xml", 8, "end")
-    assert str(error) == "walk.xml:8: field 'end' of <lle3>: expected a number, got 'abc'"
+    assert str(error) == ("walk.xml:8: field 'end' of <lle3>: expected a number or arithmetic over the constants, "
+                          "got 'abc' (unknown constant 'abc' (constants: none declared))")
 
 
 @pytest.mark.parametrize("bad", ["nan", "inf", "1_0", "", "0x10", "4 6"])
@@ -166,16 +167,20 @@ def test_first_phase_naming_no_phase():
     assert "'nowhere' names no phase" in str(error)
 
 
-def test_duplicate_phase_names():
+def test_a_phase_name_used_twice_takes_the_later_phase_with_a_warning():
+    """FIIT's loader keeps phases in a map by name, so the later definition is the one its agent plays."""
     text = _phase_file().replace("  </phases>", '    <phase name="p"><effectors/><duration>1</duration></phase>\n'
                                  "  </phases>")
-    error = _error(text)
-    assert (error.line, error.field) == (12, "name")
-    assert "already used on line 6" in str(error)
+    motion = loads_xml(text, "walk.xml")
+    assert [k.name for k in motion.keyframes] == ["p"]
+    assert motion.keyframes[0].targets == {} and motion.keyframes[0].duration_s == pytest.approx(0.001)
+    assert motion.source.warnings == ("walk.xml:12: phase name 'p' is already used on line 6: this later phase "
+                                      "replaces it",)
 
 
 @pytest.mark.parametrize(("duration", "message"), [
-    ("-300", "must not be negative"), ("0", "at least 1 ms"), ("80.5", "whole number"), ("abc", "a number of"),
+    ("-300", "must not be negative"), ("80.5", "whole number"), ("abc", "a number of milliseconds or arithmetic"),
+    ("2*40.25", "whole number"),
 ])
 def test_bad_durations(duration, message):
     error = _error(_phase_file(duration=duration))
@@ -188,14 +193,27 @@ def test_bad_is_final():
     assert (error.line, error.field) == (6, "isFinal")
 
 
-def test_unknown_phase_attribute():
-    error = _error(_phase_file(phase_attributes=' speed="2"'))
-    assert (error.line, error.field) == (6, "speed")
+def test_a_zero_duration_plays_as_one_cycle_with_a_warning():
+    motion = loads_xml(_phase_file(duration="0"), "walk.xml")
+    assert motion.keyframes[0].duration_s == pytest.approx(0.020)
+    assert motion.source.warnings == ("walk.xml:10: phase 'p': duration 0 ms is played as one cycle (20 ms), as "
+                                      "FIIT's loader plays it",)
 
 
-def test_duplicate_effector_in_phase():
-    error = _error(_phase_file('<lle3 end="40"/><lle3 end="41"/>'))
-    assert (error.line, error.field) == (8, "lle3")
+def test_an_unknown_phase_attribute_is_a_warning_and_is_written_back():
+    motion = loads_xml(_phase_file(phase_attributes=' opposite="q"'), "walk.xml")
+    assert motion.keyframes[0].name == "p"
+    assert "walk.xml:6: attribute opposite='q' of <phase> is not in the format" in motion.source.warnings[0]
+    assert '<phase name="p" opposite="q">' in dumps_xml(motion)
+
+
+def test_an_effector_listed_twice_takes_the_later_value_with_a_warning():
+    """The agent sends both commands in one message and the server applies the later one."""
+    motion = loads_xml(_phase_file('<lle3 end="40"/><lle4 end="-20"/>\n<lle3 end="41"/>'), "walk.xml")
+    assert list(motion.keyframes[0].targets) == ["llj4", "llj3"]
+    assert motion.keyframes[0].targets["llj3"].angle_rad == pytest.approx(math.radians(41.0))
+    assert motion.source.warnings == ("walk.xml:9: <lle3> is listed twice in phase 'p' (first on line 8): the "
+                                      "later one counts",)
 
 
 def test_not_well_formed_xml_gives_line():
