@@ -449,6 +449,44 @@ def test_type_3_s_own_long_kick_real_commands_stay_upright() -> None:
     assert upright(run.ours, range(run.meta["skill_cycle"], max(run.real) + 1))
 
 
+#: A 7-cycle walk of 13 cm steps found on the real server alone (2026-11-28: motion-studio tune gait walk_fast --backend
+#: real --step-cycles 7 --lean --robust 4 --bound step_length_m=0.12:0.15 --sigma 0.1 --generations 14 --seed 21 from
+#: a scanned 12.8 cm shape; generation 1, candidate 6: step_length_m 0.1299, step_height_m 0.0496, sway_m 0.0001,
+#: sway_phase -0.0554, swing_linear 0.1904, toe_out_deg 4.331, ramp_steps 2, arm_swing_deg 9.9554, the rest walk_fast's),
+#: not shipped: it walks 16.0 m in the tuner's 20 s straight trial on the real server and falls within 4 s on ours.
+#: Recorded with ``motion-studio real skills walk_fast --motions worktree --fixture`` (the candidate written as walk_fast):
+#: the real robot walks 5.9 m in the 10 s case upright (0.575 m/s); ours, live, falls at 3.1 s.
+WALK_13CM = "walk_fast_13cm_candidate"
+
+
+def test_the_real_13_cm_walk_s_commands_agree_on_ours_until_its_first_step() -> None:
+    # Open loop on ours: the stance and the weight shift before the first step agree (leg joints to 0.11 deg, torso
+    # height to 0.6 mm over the first 0.58 s); the real robot walks on upright.
+    run = replay(WALK_13CM)
+    start = run.meta["skill_cycle"]
+    before_step = range(start, start + 29)
+    assert max(abs(run.our_joints[i][j] - run.real_joints[i][j]) for i in before_step for j in LEG_JOINTS) < 0.2
+    assert max(abs(run.ours[i].torso_m[2] - run.real[i].torso_m[2]) for i in before_step) < 0.002
+    assert upright(run.real, range(start, max(run.real) + 1))
+    assert run.real[max(run.real)].torso_m[0] - run.real[start].torso_m[0] > 5.5   # measured 5.91 m
+
+
+@pytest.mark.xfail(strict=True, reason="measured disagreement (2026-11-28): open loop, the real 13 cm walk's commands "
+                   "make ours fall 1.9 s into the case (cycle 142) where the real robot walks 10 s upright. They part "
+                   "at the first step (0.56 s): the hip yaw-pitch rlj1, commanded -5.77 deg in a cycle, moves -4.44 on "
+                   "the real server and -2.91 on ours (ours' motor is held back harder; standing, ours' feet push "
+                   "33 N sideways against each other where the real ones push 4.5 N: Coulomb friction holds what "
+                   "SimSpark's force-dependent slip lets creep away), and at the third landing (0.88 s) the real right "
+                   "foot lands (149 N) while ours is a cycle late: ours' torso drops 13 mm with no foot down, the "
+                   "swing foot scuffs the ground again and its hip pitch llj3 gains 3.3 instead of 7.0 deg. Friction "
+                   "0.5-50, no-slip, impratio 0.02-100, solref (0.01-0.04, 1), solimp up to (0.9, 0.95), a 1 mm "
+                   "surface layer, the calibrated contact set (which brings the squeeze to 2.6 N), joint drift off and "
+                   "the swing foot on its drift at 1-5 mm all fall between 1.5 and 3.1 s")
+def test_the_real_13_cm_walk_s_commands_stay_upright_on_ours() -> None:
+    run = replay(WALK_13CM)
+    assert upright(run.ours, window(run, 480))
+
+
 #: A long kick of 8 m found on the real server alone (motions/params/kick_strong_8m_real.toml, not shipped: ours falls
 #: after it), recorded with ``motion-studio real skills kick_strong --motions worktree --fixture`` (2026-11-28): the
 #: real ball flies 0.5 m high, lands 3.7 m on and stops 8.17 m from its spot; the real robot stands.
