@@ -74,6 +74,12 @@ sessions), benchmarks/bench_sim.py.
   below fit it.) ``sim/physics_candidates/noslip.toml`` (the no-slip post-solve alone) makes the lying-on-back
   stand-up agree (live transfer: ours 0/10 -> 10/10 at 2.54 s, real 8/10 at 2.54 s) but breaks 4-7 tests of
   skills tuned on these defaults and costs 1.8x the physics CPU; its header has the figures.
+  Refitted on every trace of today's world (2026-11-28, 69 traces and the ball roll, the 13 cm walk's among them):
+  ``sim/physics_candidates/contact_fit_2026-11-28.toml`` (friction 12.2, impratio 0.21: soft friction with a high
+  mu, the direction of the older fit), objective 1.200 -> 1.147. It lets a loaded foot creep as SimSpark's
+  force-dependent slip does (standing in a walk's stance the feet squeeze 3 N sideways, real 5 N, these defaults
+  33 N; tests/sim/test_contact_creep.py), but 36 tests of skills tuned on these defaults and of other replays fail
+  on it; its header has the figures.
 * **Ball contacts, fitted on the real kick and the real roll (2026-11-26).** SimSpark's ball contacts have
   μ = ∞ with force-dependent slip 0.3 m/s per N (the ball's 0.6 averaged with 5e-3), so the tangential force
   a ball contact can carry grows with the slip, not with the normal force. Two consequences MuJoCo's Coulomb

@@ -452,10 +452,10 @@ def test_type_3_s_own_long_kick_real_commands_stay_upright() -> None:
 #: A 7-cycle walk of 13 cm steps found on the real server alone (2026-11-28: motion-studio tune gait walk_fast --backend
 #: real --step-cycles 7 --lean --robust 4 --bound step_length_m=0.12:0.15 --sigma 0.1 --generations 14 --seed 21 from
 #: a scanned 12.8 cm shape; generation 1, candidate 6: step_length_m 0.1299, step_height_m 0.0496, sway_m 0.0001,
-#: sway_phase -0.0554, swing_linear 0.1904, toe_out_deg 4.331, ramp_steps 2, arm_swing_deg 9.9554, the rest walk_fast's),
-#: not shipped: it walks 16.0 m in the tuner's 20 s straight trial on the real server and falls within 4 s on ours.
-#: Recorded with ``motion-studio real skills walk_fast --motions worktree --fixture`` (the candidate written as walk_fast):
-#: the real robot walks 5.9 m in the 10 s case upright (0.575 m/s); ours, live, falls at 3.1 s.
+#: sway_phase -0.0554, swing_linear 0.1904, toe_out_deg 4.331, ramp_steps 2, arm_swing_deg 9.9554, the rest
+#: walk_fast's), not shipped: it walks 16.0 m in the tuner's 20 s straight trial on the real server and falls within
+#: 4 s on ours. Recorded with ``motion-studio real skills walk_fast --motions worktree --fixture`` (the candidate
+#: written as walk_fast): the real robot walks 5.9 m in the 10 s case upright (0.575 m/s); ours, live, falls at 3.1 s.
 WALK_13CM = "walk_fast_13cm_candidate"
 
 
