@@ -189,7 +189,8 @@ def loads_webots(text: str, path: str = "<string>", name: str | None = None) -> 
 
     Raises:
         MotionFormatError: bad header or version (V1.0 and the older V1.1 layout are read), duplicate joint
-            column, bad or non-increasing time, a V1.1 pose without its state word, values and seconds,
+            column, bad or non-increasing time, a V1.1 pose line with other than the state word, a value per
+            column and (optionally) its seconds,
             missing pose name, wrong number of values, a value that is neither a number nor ``*``, an
             over-long line, no joints or no poses; each with path, line and field.
     """

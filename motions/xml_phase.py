@@ -20,10 +20,13 @@ written ``true``).
 Decisions on points REFERENCE leaves open:
 - ``next`` or ``finalize`` naming no phase is a warning (logged and kept in ``source.warnings``), not an
   error: REFERENCE says the motion then ends after that phase. A ``firstPhase`` naming no phase is an error.
-- ``<duration>`` must be a whole number of milliseconds >= 0; 0 is played as one cycle (20 ms) with a warning.
+- ``<duration>`` must be a whole number of milliseconds >= 0 (0: below).
+- Phase names are matched exactly (the 2012 agent ignores case; two names differing only in case would
+  be ambiguous there, so avoid them).
 
 Files other tools wrote (robocup-fiit's moves, read 2026-11-28: 78 of 111 files broke the stricter reader
-before) are read as FIIT's own loader reads them, each departure from REFERENCE §6a a warning with its line:
+before) are read as FIIT's own loader reads them; where the reading makes a choice (0 ms, a repeated effector or
+phase, an attribute outside the format) a warning names the line:
 - ``end`` and ``<duration>`` may be arithmetic over the ``<constants>`` (``strafe_leg_crouch+30``,
   ``-2*strafe_leg_crouch``; ``motions.expressions``); the text is written back while it keeps its value;
 - a phase without ``<effectors>`` holds every joint, as an empty one does;
@@ -34,8 +37,6 @@ before) are read as FIIT's own loader reads them, each departure from REFERENCE 
   ``<low_skill>``) describe the motion: not played, written back where they were;
 - a ``<duration>`` of 0 ms: FIIT's loader rounds every duration up to whole 20 ms cycles, so 0 is one cycle.
 A FIIT move annotation (root ``<annotation>``: a move's preconditions, no phases) is an error that says so.
-- Phase names are matched exactly (the 2012 agent ignores case; two names differing only in case would
-  be ambiguous there, so avoid them).
 """
 
 from __future__ import annotations
@@ -44,9 +45,9 @@ import logging
 import math
 
 from motions.errors import ConversionError, MotionFormatError
+from motions.expressions import ExpressionError, evaluate
 from motions.joints import joint_by_effector, joint_by_wire, known_effector_names
 from motions.model import SERVER_CYCLE_MS, XML, JointTarget, Keyframe, KeyframeSource, Motion, MotionSource
-from motions.expressions import ExpressionError, evaluate
 from motions.numbers import degrees_text_for_rad, is_whole, parse_decimal, parse_integer, shortest_decimal
 from motions.xml_tree import XmlNode, parse_xml
 
@@ -73,7 +74,6 @@ class _Reader:
         self.path = path
         self.warnings: list[str] = []
         self.constant_values: dict[str, float] = {}
-        self.expression_problem = ""
 
     def error(self, node: XmlNode, detail: str, field: str | None, element: str | None = None) -> MotionFormatError:
         return MotionFormatError(detail, path=self.path, line=node.line, field=field, element=element)
@@ -105,17 +105,14 @@ class _Reader:
                 raise self.error(node, "missing required attribute", key, element or node.tag)
         return tuple(extra)
 
-    def number(self, node: XmlNode, text: str) -> float | None:
-        """``text`` as a plain decimal, else as arithmetic over the file's constants; None if neither (the
-        caller names the field)."""
+    def number(self, text: str) -> float:
+        """``text`` as a plain decimal, else as arithmetic over the file's constants.
+
+        Raises:
+            ExpressionError: neither (the caller names the line and the field).
+        """
         value = parse_decimal(text)
-        if value is not None:
-            return value
-        try:
-            return evaluate(text, self.constant_values)
-        except ExpressionError as problem:
-            self.expression_problem = str(problem)
-            return None
+        return value if value is not None else evaluate(text, self.constant_values)
 
     def children(self, node: XmlNode, allowed: tuple[str, ...]) -> dict[str, list[XmlNode]]:
         """Children grouped by tag; any other tag is an error naming what is allowed."""
@@ -186,10 +183,11 @@ class _Reader:
         self.no_text(node)
         self.check_attributes(node, ("end", "computed"), ("end",))
         text = node.attribute("end") or ""
-        angle_deg = self.number(node, text)
-        if angle_deg is None:
-            raise self.error(node, f"expected a number or arithmetic over the constants, got {text!r} "
-                             f"({self.expression_problem})", "end", node.tag)
+        try:
+            angle_deg = self.number(text)
+        except ExpressionError as problem:
+            raise self.error(node, f"expected a number or arithmetic over the constants, got {text!r} ({problem})",
+                             "end", node.tag) from None
         return spec.perceptor, JointTarget(math.radians(angle_deg), node.attribute("computed")), text
 
     def duration(self, node: XmlNode, phase_name: str) -> float:
@@ -201,10 +199,11 @@ class _Reader:
             if parse_decimal(text) is not None:
                 raise self.error(node, f"expected a whole number of milliseconds, got {text!r}", "duration",
                                  element)
-            value = self.number(node, text)
-            if value is None:
+            try:
+                value = self.number(text)
+            except ExpressionError as problem:
                 raise self.error(node, f"expected a number of milliseconds or arithmetic over the constants, got "
-                                 f"{text!r} ({self.expression_problem})", "duration", element)
+                                 f"{text!r} ({problem})", "duration", element) from None
             if not is_whole(value):
                 raise self.error(node, f"expected a whole number of milliseconds, got {text!r} = {value:g}",
                                  "duration", element)
