@@ -44,7 +44,6 @@ def _tokens(text: str) -> list[tuple[str, str, int]]:
 
 class _Parser:
     def __init__(self, text: str, constants: Mapping[str, float]) -> None:
-        self.text = text
         self.constants = constants
         self.tokens = _tokens(text)
         self.index = 0

@@ -85,6 +85,8 @@ class _Reader:
         self.path = path
         self.lines = text.split("\n")
         self.warnings: list[str] = []
+        self.v11 = False
+        """The V1.1 layout (``header`` finds it)."""
 
     def error(self, line: int, detail: str, field: str | None, element: str | None = None) -> MotionFormatError:
         return MotionFormatError(detail, path=self.path, line=line, field=field, element=element)
@@ -100,9 +102,9 @@ class _Reader:
                              f"{MAX_LINE_CHARS}", "line")
         return _tokens(line) if separator == "," else [t for t in re.split(r"[%\r]", line) if t]
 
-    def v11_pose(self, number: int, tokens: list[str], columns: list[str]) -> tuple[list[str], int]:
-        """Values and duration [ms] of a V1.1 pose line ``<state>%<values>%<seconds>``."""
-        pose = f"Pose{number - 2}"
+    def v11_pose(self, number: int, tokens: list[str], columns: list[str], pose: str) -> tuple[list[str], int]:
+        """Values and duration [ms] of a V1.1 pose line ``<state>%<values>%<seconds>`` (``pose``: its name, for
+        the errors)."""
         if tokens[0].strip() != "play":
             self.warnings.append(f"{self.path}:{number}: pose state {tokens[0]!r} read as 'play'")
             logger.warning(self.warnings[-1])
@@ -135,6 +137,7 @@ class _Reader:
             names = [name for name in self.line_tokens(2, "%") if name.strip()]
             if not names:
                 raise self.error(2, "no joint names (a V1.1 file names them on line 2, separated by '%')", "header")
+            self.v11 = True
             return [name.strip() for name in names], 2
         if tokens[1] != VERSION:
             raise self.error(1, f"unsupported version {tokens[1]!r}; {VERSION} and {VERSION_V11} are read",
@@ -207,7 +210,7 @@ def loads_webots(text: str, path: str = "<string>", name: str | None = None) -> 
         wires.append(None if spec is None else spec.perceptor)
     keyframes: list[Keyframe] = []
     unknown_texts: dict[int, list[str]] = {i: [] for i, w in enumerate(wires) if w is None}
-    v11 = reader.line_tokens(1)[1] == VERSION_V11
+    v11 = reader.v11
     zero_poses = 0
     previous_ms = -1
     number = header_lines
@@ -217,10 +220,10 @@ def loads_webots(text: str, path: str = "<string>", name: str | None = None) -> 
         if not tokens or (v11 and not "".join(tokens).strip()):
             break
         if v11:
-            values, pose_ms = reader.v11_pose(number, tokens, columns)
+            pose, time_text = f"Pose{len(keyframes) + 1}", None
+            values, pose_ms = reader.v11_pose(number, tokens, columns, pose)
             if pose_ms == 0:
                 zero_poses, pose_ms = zero_poses + 1, V11_ZERO_POSE_MS
-            pose, time_text = f"Pose{len(keyframes) + 1}", None
             time_ms = max(previous_ms, 0) + pose_ms
         else:
             time_ms, pose = reader.pose(number, tokens, columns, previous_ms)

@@ -43,6 +43,7 @@ from __future__ import annotations
 
 import logging
 import math
+from collections.abc import Mapping
 
 from motions.errors import ConversionError, MotionFormatError
 from motions.expressions import ExpressionError, evaluate
@@ -67,6 +68,17 @@ PHASE_ATTRIBUTES: dict[str, str] = {
 
 
 # ---------------------------------------------------------------------------------------------- reading
+def _number(text: str, constants: Mapping[str, float]) -> float:
+    """``text`` of an ``end`` or ``<duration>``: a plain decimal, else arithmetic over ``constants``; the one
+    reading of number texts that the reader and the writer (which keeps a text while it reads as the value) share.
+
+    Raises:
+        ExpressionError: neither (the caller names the line and the field).
+    """
+    value = parse_decimal(text)
+    return value if value is not None else evaluate(text, constants)
+
+
 class _Reader:
     """Turns the element tree of one file into a Motion, raising errors that name path, line and field."""
 
@@ -104,15 +116,6 @@ class _Reader:
             if node.attribute(key) is None:
                 raise self.error(node, "missing required attribute", key, element or node.tag)
         return tuple(extra)
-
-    def number(self, text: str) -> float:
-        """``text`` as a plain decimal, else as arithmetic over the file's constants.
-
-        Raises:
-            ExpressionError: neither (the caller names the line and the field).
-        """
-        value = parse_decimal(text)
-        return value if value is not None else evaluate(text, self.constant_values)
 
     def children(self, node: XmlNode, allowed: tuple[str, ...]) -> dict[str, list[XmlNode]]:
         """Children grouped by tag; any other tag is an error naming what is allowed."""
@@ -184,7 +187,7 @@ class _Reader:
         self.check_attributes(node, ("end", "computed"), ("end",))
         text = node.attribute("end") or ""
         try:
-            angle_deg = self.number(text)
+            angle_deg = _number(text, self.constant_values)
         except ExpressionError as problem:
             raise self.error(node, f"expected a number or arithmetic over the constants, got {text!r} ({problem})",
                              "end", node.tag) from None
@@ -200,7 +203,7 @@ class _Reader:
                 raise self.error(node, f"expected a whole number of milliseconds, got {text!r}", "duration",
                                  element)
             try:
-                value = self.number(text)
+                value = _number(text, self.constant_values)
             except ExpressionError as problem:
                 raise self.error(node, f"expected a number of milliseconds or arithmetic over the constants, got "
                                  f"{text!r} ({problem})", "duration", element) from None
@@ -231,9 +234,11 @@ class _Reader:
         targets: dict[str, JointTarget] = {}
         texts: dict[str, str] = {}
         lines: dict[str, int] = {}
-        if effectors is not None:
+        children: list[XmlNode] = []
+        if effectors is not None:   # none: holds every joint, as an empty <effectors/>
             self.no_text(effectors)
-        for child in effectors.children if effectors is not None else ():
+            children = effectors.children
+        for child in children:
             wire, target, text = self.target(child, name)
             if wire in targets:
                 self.warn(child, f"<{child.tag}> is listed twice in phase {name!r} (first on line {lines[wire]}): "
@@ -270,13 +275,12 @@ class _Reader:
                           f"{read[keyframe.name][0].line}: this later phase replaces it")
                 del read[keyframe.name]
             read[keyframe.name] = (phase_node, keyframe)
-        first_line = {name: phase_node.line for name, (phase_node, _) in read.items()}
         keyframes = [keyframe for _, keyframe in read.values()]
         for phase_node, keyframe in read.values():
-            if keyframe.next is not None and keyframe.next not in first_line:
+            if keyframe.next is not None and keyframe.next not in read:
                 self.warn(phase_node, f"phase {keyframe.name!r}: next={keyframe.next!r} names no phase; the motion "
                           "ends after this phase")
-            if keyframe.finalize is not None and keyframe.finalize not in first_line:
+            if keyframe.finalize is not None and keyframe.finalize not in read:
                 self.warn(phase_node, f"phase {keyframe.name!r}: finalize {keyframe.finalize!r} names no phase; "
                           "the motion ends after this phase when another motion is requested")
         return keyframes
@@ -342,12 +346,9 @@ def _attributes(pairs: list[tuple[str, str]]) -> str:
 
 
 def _value_of(text: str, constants: dict[str, float]) -> float | None:
-    """A number text as read (a decimal, or arithmetic over the constants); None if it no longer reads."""
-    value = parse_decimal(text)
-    if value is not None:
-        return value
+    """A number text as the reader reads it (``_number``); None if it no longer reads."""
     try:
-        return evaluate(text, constants)
+        return _number(text, constants)
     except ExpressionError:
         return None
 

@@ -84,9 +84,14 @@ def run_name(case: Case) -> str:
     return f"{case.name}_start{case.start}" if case.start else case.name
 
 
+def _every_case() -> list[Case]:
+    """Every shipped case (``cases.CASES``) and the 20 m walks, in the order the report lists them."""
+    return [*CASES.values(), *WALK_20M_CASES]
+
+
 def plan(starts: int, seed: int, names: list[str] | None = None) -> list[Case]:
     """Every shipped case (stand-ups once per lying start) and the 20 m walk; ``names`` picks cases."""
-    cases = [*CASES.values(), *WALK_20M_CASES]
+    cases = _every_case()
     if names:
         cases = [case for case in cases if case.name in names]
     out: list[Case] = []
@@ -96,7 +101,7 @@ def plan(starts: int, seed: int, names: list[str] | None = None) -> list[Case]:
 
 
 def known_cases() -> list[str]:
-    return [*CASES, *(case.name for case in WALK_20M_CASES)]
+    return [case.name for case in _every_case()]
 
 
 @dataclass
@@ -142,7 +147,7 @@ def case_of(fixture: Fixture) -> Case:
         FixtureError: the meta line names no known case.
     """
     meta = fixture.meta
-    base = {case.name: case for case in (*CASES.values(), *WALK_20M_CASES)}.get(str(meta["case"]))
+    base = {case.name: case for case in _every_case()}.get(str(meta["case"]))
     if base is None:
         raise FixtureError(fixture.path, 1, f"unknown case {meta['case']!r} in the meta line")
     base = with_dribble_config(base, meta.get("dribble_config", {}))   # a dribble recorded with --dribble settings
