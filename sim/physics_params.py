@@ -335,6 +335,14 @@ class PhysicsParams:
     Needs ``joint_slack_erp``. 2 cm: a kick's swing foot passes it right after the strike (13-19 mm at the
     strike), a walking foot (3-7 mm) or a stand-up never does; see "The kicking foot meets the ground" in the
     docstring for the threshold scan. ``sim/physics_candidates/swing_drift_ground.toml`` holds 1 cm."""
+    foot_slip_m_s_per_n: float | None = None
+    """SimSpark's force-dependent slip of a foot's contacts with the field [m/s per N] (0.005: contactjointhandler.rsg
+    and the field's default, ODE's mu = inf): each foot corner below the field's surface is held by a tangential
+    damper of 1 / slip N·s/m, solved implicitly with the step, and the foot's MuJoCo contact with the field carries
+    the normal force alone. None = MuJoCo's Coulomb friction (``friction``). See "Feet slip as ODE's" in the
+    docstring."""
+    foot_slip_layer_m: float = 0.0
+    """A foot corner holds (``foot_slip_m_s_per_n``) while it is lower than this above the field [m]."""
     noslip_iterations: int = 0
     """Iterations of MuJoCo's no-slip post-solve (0 = off): removes the slip the soft friction rows leave, as
     SimSpark's unbounded friction with its small force-dependent slip all but does."""

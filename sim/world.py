@@ -120,6 +120,33 @@ class Robot:
     acc_m_s2: np.ndarray = field(default_factory=lambda: np.zeros(3))
 
 
+_SLIP_CORNER = "slip_corner"
+_SLIP_REFERENCE = "slip_reference"
+
+
+def _add_foot_slip_dampers(template: mujoco.MjSpec, feet: list[str]) -> None:
+    """Tangential dampers at the four bottom corners of each foot box (see ``PhysicsParams.foot_slip_m_s_per_n``):
+    a velocity actuator per corner and world axis x, y (measured against a world-fixed reference site, so the
+    axes stay horizontal however the foot turns), switched by `World._hold_feet_below_the_surface`. MuJoCo's
+    ``discrete`` step takes an actuator's velocity derivative into its implicit update, so the 200 N·s/m of a
+    corner is stable at one 20 ms step on a 0.2 kg foot."""
+    template.worldbody.add_site(name=_SLIP_REFERENCE, pos=[0.0, 0.0, 0.0], group=5)
+    for name in feet:
+        geom = template.geom(name)
+        half = np.asarray(geom.size, dtype=float)
+        rotation = np.zeros(9)
+        mujoco.mju_quat2Mat(rotation, np.asarray(geom.quat, dtype=float))
+        signs = [(sx, sy, sz) for sx in (1, -1) for sy in (1, -1) for sz in (-1, 1)]
+        for k, sign in enumerate(signs):
+            corner = np.asarray(geom.pos, dtype=float) + rotation.reshape(3, 3) @ (half * sign)
+            site = template.body(name).add_site(name=f"{name}_{_SLIP_CORNER}{k}", pos=corner.tolist(), group=5)
+            for axis, gear in (("x", [1, 0, 0, 0, 0, 0]), ("y", [0, 1, 0, 0, 0, 0])):
+                template.add_actuator(name=site.name + axis, trntype=mujoco.mjtTrn.mjTRN_SITE, target=site.name,
+                                      refsite=_SLIP_REFERENCE, gear=gear, gaintype=mujoco.mjtGain.mjGAIN_FIXED,
+                                      gainprm=[0.0] * 10, biastype=mujoco.mjtBias.mjBIAS_AFFINE,
+                                      biasprm=[0.0] * 10)
+
+
 class World:
     """The physics world; see the module docstring for the cycle.
 
@@ -157,6 +184,7 @@ class World:
         """Counts recompiles: cached model addresses elsewhere are stale when it changes."""
         self._team_version = 0   # counts team changes (see `robots`)
         self._team_rows: tuple[object, ...] = (None,)
+        self._slip_corners = np.zeros(0, dtype=np.intp)
         self._reindex()
         mujoco.mj_forward(self.model, self.data)
 
@@ -229,6 +257,8 @@ class World:
         child = self._robot_template(robot_type).copy()
         frame = self.spec.worldbody.add_frame(name=f"{robot.prefix}frame")
         self.spec.attach(child, prefix=robot.prefix, frame=frame)
+        if self.params.foot_slip_m_s_per_n:
+            self._add_frictionless_foot_pairs(robot)
         self.by_key[key] = robot
         self.motors.add_robot(key, spec.joints)
         self._recompile()
@@ -265,6 +295,8 @@ class World:
                         quat=list(geom.quat), contype=0, conaffinity=_BALL_BIT, condim=geom.condim, mass=0.0,
                         friction=list(geom.friction), solref=list(geom.solref), solimp=list(geom.solimp),
                         group=3)
+        if p.foot_slip_m_s_per_n:
+            _add_foot_slip_dampers(template, sorted(feet))
         for sensor in spec.sensors:
             if sensor.kind == "force":
                 # MuJoCo sums the foot's contacts in C: net force and force-weighted centroid (world frame).
@@ -274,9 +306,22 @@ class World:
         self._templates[robot_type] = template
         return template
 
+    def _add_frictionless_foot_pairs(self, robot: Robot) -> None:
+        """Each foot meets the field through an explicit pair without friction (the slip dampers carry it)."""
+        p = self.params
+        for body in sorted({s.body for s in robot.spec.sensors if s.kind == "force"}):
+            pair = self.spec.add_pair(name=f"{robot.prefix}slip_{body}", geomname1=robot.prefix + body,
+                                      geomname2="field")
+            pair.condim = 1
+            pair.solref, pair.solimp = list(p.contact_solref), list(p.contact_solimp)
+            if p.surface_layer_m > 0.0:
+                pair.margin, pair.gap = -p.surface_layer_m, 0.0
+
     def remove_robot(self, key: int) -> None:
         """Take a robot out of the world (agent disconnected)."""
         robot = self.by_key.pop(key)
+        for pair in [pair for pair in self.spec.pairs if pair.name.startswith(robot.prefix)]:
+            self.spec.delete(pair)
         self.spec.delete(self.spec.body(f"{robot.prefix}torso"))
         frame = next((f for f in self.spec.frames if f.name == f"{robot.prefix}frame"), None)
         if frame is not None:
@@ -347,6 +392,15 @@ class World:
             m.dof_damping[robot.root_dof + 3:robot.root_dof + 6] = n_bodies * p.body_angular_drag_nm_s
             self._apply_collision_bits(robot)
         self.motors.bind_model(m)
+        if p.foot_slip_m_s_per_n:
+            corners = [m.site(n).id for n in (m.site(i).name for i in range(m.nsite)) if _SLIP_CORNER in n]
+            self._slip_corners = np.array(corners, dtype=np.intp)
+            self._slip_actuators = np.array([[m.actuator(m.site(c).name + axis).id for axis in "xy"]
+                                             for c in corners], dtype=np.intp).reshape(-1, 2)
+            self._slip_damping = np.array(-1.0 / p.foot_slip_m_s_per_n)
+            self._slip_layer = np.array(p.foot_slip_layer_m)
+            slot_of_body = {body: slot for slot, body in enumerate(sensor_bodies)}
+            self._slip_slots = np.array([slot_of_body[int(m.site_bodyid[c])] for c in corners], dtype=np.intp)
         if self.joint_slack is not None:
             # The legs only: they meet the ball (a body's drift depends on its own motion against the torso alone,
             # so the others need not be followed; the monitor shows them where their joints put them).
@@ -536,6 +590,7 @@ class World:
         m, d, motors = self.model, self.data, self.motors
         if self._swing_twins.size:
             self._swing_feet_meet_the_field()
+        slip_start = self._hold_feet_below_the_surface() if self._slip_corners.size else None
         cycle_start = _save_state(d)
         for substep in range(self.params.substeps):
             # The first substep starts from the cycle's start; predict writes no saved field, so one copy serves
@@ -565,9 +620,52 @@ class World:
         self.time_s += self.params.cycle_s
         self._contacts(contacts)  # from the step's contacts, with the poses they were found at
         mujoco.mj_kinematics(m, d)
+        if slip_start is not None:
+            self._add_slip_to_foot_sensors(*slip_start)
         if self.joint_slack is not None:
             self.joint_slack.settle(m, d)
         self._poses_stale = False
+
+    def _hold_feet_below_the_surface(self) -> tuple[np.ndarray, np.ndarray]:
+        """Switch each foot corner's slip damper on where the corner is below the field (ODE's contact points of a
+        box on a plane are its corners under the plane), off elsewhere; decided at the step's start, as ODE does.
+
+        Returns:
+            the corners' world positions [m] at the step's start (a copy) and which of them hold.
+        """
+        start = self.data.site_xpos[self._slip_corners]
+        below = start[:, 2] < self._slip_layer
+        self.model.actuator_biasprm[self._slip_actuators, 2] = np.where(below, self._slip_damping, 0.0)[:, None]
+        return start, below
+
+    def _add_slip_to_foot_sensors(self, start: np.ndarray, held: np.ndarray) -> None:
+        """Add the slip dampers' forces to the FRP of `_foot_sensors` (SimSpark sums every contact's whole force,
+        friction too, and weights the centre by each force's length). A damper's force is the one the implicit
+        step applied, -v/slip with v the corner's velocity at the step's end: its displacement over the step."""
+        if not np.count_nonzero(held):
+            return
+        velocity = (self.data.site_xpos[self._slip_corners] - start) / self._cycle
+        force = np.zeros_like(start)
+        force[:, :2] = np.where(held[:, None], velocity[:, :2] * self._slip_damping, 0.0)
+        slots = self._slip_slots
+        total = np.zeros((len(self.frp_force), 3))
+        np.add.at(total, slots, force)
+        weight = np.linalg.norm(force, axis=1)
+        weights = np.zeros(len(self.frp_force))
+        np.add.at(weights, slots, weight)
+        moment = np.zeros((len(self.frp_force), 3))
+        np.add.at(moment, slots, start * weight[:, None])
+        touched = self.frp_active & (weights > 0.0)
+        if not np.count_nonzero(touched):
+            return
+        rotation, origin = self._frp_frames
+        own = np.linalg.norm(self.frp_force, axis=1)
+        world_point = self.frp_point_world
+        centre = (world_point * own[:, None] + moment) / np.maximum(own + weights, 1e-12)[:, None]
+        local_force = (total[:, None, :] @ rotation)[:, 0]
+        local_centre = ((centre - origin)[:, None, :] @ rotation)[:, 0]
+        self.frp_force = np.where(touched[:, None], self.frp_force + local_force, self.frp_force)
+        self.frp_point = np.where(touched[:, None], local_centre, self.frp_point)
 
     def _swing_feet_meet_the_field(self) -> None:
         """A foot without weight in the last step whose joint drift exceeds ``swing_drift_ground_m`` meets the field
@@ -777,6 +875,10 @@ class World:
         self.frp_point = (centroid[:, None, :] @ rotation)[:, 0]
         self.frp_force = (force[:, None, :] @ rotation)[:, 0]
         self.frp_active = active
+        if self._slip_corners.size:   # the frames and world centre the slip forces are added in
+            origin = self.xpos_flat[self._sensor_xpos].reshape(-1, 3)
+            self._frp_frames = (rotation, origin)
+            self.frp_point_world = centroid + origin
 
     # ---- sensor readings ------------------------------------------------------------------------------
     def perceptor_rows(self) -> tuple[np.ndarray, list[int]]:
