@@ -80,6 +80,27 @@ sessions), benchmarks/bench_sim.py.
   force-dependent slip does (standing in a walk's stance the feet squeeze 3 N sideways, real 5 N, these defaults
   33 N; tests/sim/test_contact_creep.py), but 36 tests of skills tuned on these defaults and of other replays fail
   on it; its header has the figures.
+* **Feet slip as ODE's (2026-11-29, issue 12; ``foot_slip_m_s_per_n``, not the default).** The friction rows above
+  cannot be rewritten inside MuJoCo's step, but an actuator's velocity derivative is solved implicitly with it: a
+  velocity actuator with a site transmission measured against a world-fixed reference site is a tangential damper
+  at a body point, stable at one 20 ms step on a 0.2 kg foot (a 5 N push on a lone foot box creeps at 6.25 mm/s,
+  exactly 5 N / 800 N·s/m). With ``foot_slip_m_s_per_n`` = 0.005 each foot box has one such damper of 1 / slip =
+  200 N·s/m per world axis at each of its 8 corners, switched on at the step's start where the corner is below the
+  field (ODE's box-plane contact points; SimSpark takes at most 4 per pair, odespace.cpp), whatever its normal force;
+  the foot's MuJoCo contact with the field is an explicit pair without friction, and the FRP adds the dampers'
+  forces (SimSpark's FRP sums every contact's whole force). Nothing is fitted: SimSpark's foot contacts have mu = inf
+  and slip 5e-3 (touchperceptorhandler.rsg; the field's "(setContactSlip 0.1 0.1)" takes one argument, so the field
+  keeps the handler's 5e-3, as odecontactjointhandler.cpp's comment says). Measured: the 13 cm walk's stance
+  squeezes the feet 4.87 N sideways (real 4.97, these defaults 33.5; tests/sim/test_foot_slip.py); every recorded
+  real trace replayed (``motion-studio calibrate``) 1.200 -> 1.040, the same outcome as the real robot in 48 of 66
+  replays instead of 42 (the back stand-ups above all); our agent closed loop beside the real one (``motion-studio
+  transfer``) walks within 1-7 % of the real speeds (defaults 1-11 %) and turns 1.00 of the real turn (1.05). Not
+  the default: our agents fall far more often than on the real server (3 v 3 against standing robots, 16 matches:
+  35 falls, nearly all type 4 walking), the back and side stand-ups stand at the second attempt only, and the
+  first step's hip yaw-pitch (commanded -5.77 deg in a cycle) now moves -5.77 where the real one moves -4.44: the
+  real feet still resist more, most likely by staying in contact where ours lift (the real foot rests deeper).
+  ``sim/physics_candidates/foot_slip.toml`` has the figures; ``foot_slip_layer_m`` (a corner holds up to that
+  height above the field) measured worse at 1 mm.
 * **Ball contacts, fitted on the real kick and the real roll (2026-11-26).** SimSpark's ball contacts have
   μ = ∞ with force-dependent slip 0.3 m/s per N (the ball's 0.6 averaged with 5e-3), so the tangential force
   a ball contact can carry grows with the slip, not with the normal force. Two consequences MuJoCo's Coulomb
@@ -339,10 +360,11 @@ class PhysicsParams:
     """SimSpark's force-dependent slip of a foot's contacts with the field [m/s per N] (0.005: contactjointhandler.rsg
     and the field's default, ODE's mu = inf): each foot corner below the field's surface is held by a tangential
     damper of 1 / slip N·s/m, solved implicitly with the step, and the foot's MuJoCo contact with the field carries
-    the normal force alone. None = MuJoCo's Coulomb friction (``friction``). See "Feet slip as ODE's" in the
-    docstring."""
+    the normal force alone. None = MuJoCo's Coulomb friction (``friction``), the default: see "Feet slip as ODE's" in
+    the docstring for why."""
     foot_slip_layer_m: float = 0.0
-    """A foot corner holds (``foot_slip_m_s_per_n``) while it is lower than this above the field [m]."""
+    """A foot corner holds (``foot_slip_m_s_per_n``) while it is lower than this above the field [m]; 0 = ODE's
+    contact points, the corners below the field (1 mm measured worse, see "Feet slip as ODE's")."""
     noslip_iterations: int = 0
     """Iterations of MuJoCo's no-slip post-solve (0 = off): removes the slip the soft friction rows leave, as
     SimSpark's unbounded friction with its small force-dependent slip all but does."""

@@ -125,11 +125,11 @@ _SLIP_REFERENCE = "slip_reference"
 
 
 def _add_foot_slip_dampers(template: mujoco.MjSpec, feet: list[str]) -> None:
-    """Tangential dampers at the four bottom corners of each foot box (see ``PhysicsParams.foot_slip_m_s_per_n``):
-    a velocity actuator per corner and world axis x, y (measured against a world-fixed reference site, so the
-    axes stay horizontal however the foot turns), switched by `World._hold_feet_below_the_surface`. MuJoCo's
-    ``discrete`` step takes an actuator's velocity derivative into its implicit update, so the 200 N·s/m of a
-    corner is stable at one 20 ms step on a 0.2 kg foot."""
+    """Tangential dampers at the 8 corners of each foot box (see ``PhysicsParams.foot_slip_m_s_per_n``; all 8, so a
+    foot lying on its side or upside down holds too): a velocity actuator per corner and world axis x, y (measured
+    against a world-fixed reference site, so the axes stay horizontal however the foot turns), switched by
+    `World._hold_feet_below_the_surface`. MuJoCo's ``discrete`` step takes an actuator's velocity derivative into
+    its implicit update, so the 200 N·s/m of a corner is stable at one 20 ms step on a 0.2 kg foot."""
     template.worldbody.add_site(name=_SLIP_REFERENCE, pos=[0.0, 0.0, 0.0], group=5)
     for name in feet:
         geom = template.geom(name)

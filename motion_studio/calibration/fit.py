@@ -56,8 +56,17 @@ BALL_PARAMETERS: tuple[Parameter, ...] = (
     FitParameter("ball_solimp[1]", 0.05, 0.99),
     FitParameter("ball_robot_restitution", 0.4, 1.0),
 )
+#: The feet's force-dependent slip (`sim.physics_params`, "Feet slip as ODE's") and the other body parts' Coulomb
+#: friction that was fitted beside the feet's Coulomb mu; fitted from a physics file that sets the slip
+#: (sim/physics_candidates/foot_slip.toml): 0.005 m/s per N is SimSpark's own value, the start of the search.
+SLIP_PARAMETERS: tuple[Parameter, ...] = (
+    FitParameter("foot_slip_m_s_per_n", 0.0005, 0.05, log=True),
+    FitParameter("foot_slip_layer_m", 0.0, 0.002),
+    FitParameter("body_friction", 0.3, 3.0, log=True),
+)
 PARAMETER_SETS: dict[str, tuple[Parameter, ...]] = {
-    "contact": CONTACT_PARAMETERS, "ball": BALL_PARAMETERS, "all": CONTACT_PARAMETERS + BALL_PARAMETERS}
+    "contact": CONTACT_PARAMETERS, "ball": BALL_PARAMETERS, "slip": SLIP_PARAMETERS,
+    "all": CONTACT_PARAMETERS + BALL_PARAMETERS}
 DEFAULT_PARAMETERS = CONTACT_PARAMETERS
 
 
@@ -73,6 +82,9 @@ def read_value(params: PhysicsParams, name: str) -> float:
     if field not in PhysicsParams.__dataclass_fields__:
         raise CalibrationError("<parameters>", 0, f"unknown physics parameter {field!r}")
     value = getattr(params, field)
+    if value is None:
+        raise CalibrationError("<parameters>", 0, f"{field} is off (None) in the physics in force: start from a "
+                                                  f"physics file that sets it (NAO3D_PHYSICS_FILE=...)")
     return float(value[index] if index is not None else value)
 
 
@@ -84,7 +96,8 @@ def with_values(params: PhysicsParams, values: dict[str, float]) -> PhysicsParam
         if field not in PhysicsParams.__dataclass_fields__:
             raise CalibrationError("<parameters>", 0, f"unknown physics parameter {field!r}")
         if index is None:
-            changes[field] = type(getattr(params, field))(value)
+            current = getattr(params, field)
+            changes[field] = float(value) if current is None else type(current)(value)
         else:
             current = list(changes.get(field, getattr(params, field)))  # type: ignore[arg-type]
             current[index] = value

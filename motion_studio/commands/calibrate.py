@@ -26,7 +26,9 @@ def calibrate(
     out: Annotated[Path, typer.Option(help="run folder: checkpoint, evaluations.jsonl, agreement.png")] =
         Path("out/calibrate"),
     write: Annotated[bool, typer.Option(help="write the fitted values into sim/physics_calibrated.toml")] = False,
-    parameters: Annotated[str, typer.Option(help="what to fit: contact (robot contacts), ball, or all")] = "contact",
+    parameters: Annotated[str, typer.Option(help="what to fit: contact (robot contacts), ball, slip (the "
+                                               "feet's force-dependent slip, from a physics file that sets it), or "
+                                               "all (contact and ball)")] = "contact",
     details: Annotated[bool, typer.Option(help="print every measure of every trace (real / ours, error)")] = False,
     only: Annotated[list[str] | None, typer.Option(help="use only traces whose name contains this (repeatable); "
                                                         "'ball_roll' is the real ball-roll figure")] = None,

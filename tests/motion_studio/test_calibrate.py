@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import gzip
 import json
+import os
 import subprocess
 import sys
 from dataclasses import replace
@@ -94,6 +95,23 @@ def test_cli_error_is_one_line(tmp_path: Path) -> None:
                             capture_output=True, text=True, timeout=120)
     assert result.returncode == 2
     assert result.stderr.strip().count("\n") == 0 and "no real_*.jsonl" in result.stderr
+
+
+def test_the_slip_fit_starts_from_a_physics_file_that_sets_it(tmp_path: Path) -> None:
+    # With the defaults (no slip) the fit cannot start: one line naming the field and the way out.
+    run_dir = tmp_path / "run"
+    result = subprocess.run([sys.executable, "-m", "motion_studio", "calibrate", "--only", "real_0.7.3_stand.",
+                             "--parameters", "slip", "--generations", "1", "--popsize", "4", "--out", str(run_dir)],
+                            capture_output=True, text=True, timeout=300,
+                            env={**os.environ, "NAO3D_PHYSICS_FILE": ""})
+    assert result.returncode == 2
+    assert result.stderr.strip().splitlines()[-1].startswith("error: ")
+    assert "foot_slip_m_s_per_n is off (None)" in result.stderr and "NAO3D_PHYSICS_FILE" in result.stderr
+    # A fitted slip value lands in the world: the feet then carry the dampers.
+    fitted = with_values(default_physics_params(), {"foot_slip_m_s_per_n": 0.004, "foot_slip_layer_m": 0.0005})
+    assert fitted.foot_slip_m_s_per_n == 0.004 and fitted.foot_slip_layer_m == 0.0005
+    trace = load_trace(FIXTURES / "real_0.7.3_stand.jsonl.gz")
+    assert evaluate([trace], fitted).blow_ups == 0
 
 
 def test_a_physics_file_named_by_the_environment_is_used(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:

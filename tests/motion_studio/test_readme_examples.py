@@ -74,6 +74,7 @@ HOW = {
     "calibrate": PARSE,
     "calibrate --generations 20 --out out/cal": PARSE,
     "calibrate --generations 20 --write": PARSE,
+    "calibrate --parameters slip --generations 10": PARSE,   # ~25 min (100 replay sets)
 }
 #: The line a served example prints once it is up.
 SERVED_LINE = r"http://127\.0\.0\.1:\d+"
