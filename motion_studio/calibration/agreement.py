@@ -17,7 +17,9 @@ import numpy as np
 from agent.protocol.perceptors import Sense
 from agent.protocol.sense import parse_sense
 from motion_studio.realserver.fixtures import Fixture
-from motion_studio.realserver.measures import displacement_m, fallen, stood_index, turned_deg
+from agent.protocol.constants import CYCLE_S
+from motion_studio.realserver.measures import (STOOD_HOLD_S, STOOD_TORSO_Z_M, displacement_m, fallen, stood_index,
+                                               turned_deg)
 from motion_studio.realserver.replay import ReplayStates
 from motion_studio.scenarios import Truth
 
@@ -71,6 +73,32 @@ class Replay:
 def _first_fall(poses: dict[int, Truth], cycles: list[int]) -> int | None:
     """Index in ``cycles`` of the first fallen pose, None if the robot stayed up."""
     return next((k for k, i in enumerate(cycles) if fallen(poses[i])), None)
+
+
+@dataclass(frozen=True)
+class Outcome:
+    """How a skill trace ended for one robot (the transfer issue's "same fall/no-fall outcome")."""
+
+    fell: bool
+    """Fallen (`fallen`) at some cycle of the skill phase."""
+    standing: bool
+    """Standing at the end: the torso centre above STOOD_TORSO_Z_M over the last STOOD_HOLD_S."""
+
+
+def outcomes(replay: Replay) -> tuple[Outcome, Outcome] | None:
+    """The real robot's and ours' outcome of a skill trace; None for a scripted trace (no truth)."""
+    real, ours = replay.real, replay.ours
+    cycles = [i for i in sorted(real) if i >= replay.fixture.skill_cycle and i in ours]
+    if len(cycles) < 2:
+        return None
+    hold = round(STOOD_HOLD_S / CYCLE_S)
+
+    def outcome(poses: dict[int, Truth]) -> Outcome:
+        last = cycles[-hold:]
+        return Outcome(_first_fall(poses, cycles) is not None,
+                       len(last) == hold and all(poses[i].torso_m[2] > STOOD_TORSO_Z_M for i in last))
+
+    return outcome(real), outcome(ours)
 
 
 def measures(replay: Replay) -> list[Measure]:

@@ -11,12 +11,13 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
+import dataclasses
 from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
 
-from motion_studio.calibration.agreement import Measure, Replay, measures, score
+from motion_studio.calibration.agreement import Measure, Outcome, Replay, measures, outcomes, score
 from motion_studio.calibration.errors import CalibrationError
 from motion_studio.tuning import CMAES, Parameter, Problem, TuningError, run
 from motion_studio.realserver.fixtures import Fixture
@@ -119,6 +120,12 @@ class Evaluation:
     scores: dict[str, float]
     details: dict[str, list[Measure]]
     blow_ups: int
+    outcomes: dict[str, tuple[Outcome, Outcome]] = dataclasses.field(default_factory=dict)
+    """Per skill trace: the real robot's and ours' outcome (fell or not, standing at the end or not)."""
+
+    def same_outcomes(self) -> int:
+        """Skill traces whose replay ends as the real run did."""
+        return sum(real == ours for real, ours in self.outcomes.values())
 
 
 def evaluate(traces: list[Fixture], params: PhysicsParams, values: dict[str, float] | None = None,
@@ -133,16 +140,21 @@ def evaluate(traces: list[Fixture], params: PhysicsParams, values: dict[str, flo
 
         details["ball_roll"] = ball_roll_measures(params)
         scores["ball_roll"] = score(details["ball_roll"])
+    ends: dict[str, tuple[Outcome, Outcome]] = {}
     for trace in traces:
         states = replay_states(trace, params)
-        found = measures(Replay(trace, states))
+        replay = Replay(trace, states)
+        found = measures(replay)
+        ended = outcomes(replay)
+        if ended is not None:
+            ends[trace.name] = ended
         details[trace.name] = found
         scores[trace.name] = score(found)
         blow_ups += states.blow_ups
     objective = float(np.mean(list(scores.values()))) + BLOW_UP_PENALTY * blow_ups
     if not math.isfinite(objective):
         objective = float("inf")
-    return Evaluation(values or {}, objective, scores, details, blow_ups)
+    return Evaluation(values or {}, objective, scores, details, blow_ups, ends)
 
 
 def fit(traces: list[Fixture], base: PhysicsParams, parameters: tuple[Parameter, ...], run_dir: Path,

@@ -21,6 +21,10 @@ def agreement_table(before: Evaluation, after: Evaluation | None = None) -> str:
         lines.append(f"{line}  {text}")
     total = f"{'objective (mean + blow-ups)':32s} {before.objective:7.3f}" + (f" {after.objective:7.3f}" if after else "")
     lines.append(total)
+    if before.outcomes:
+        counts = " -> ".join(f"{e.same_outcomes()}" for e in (before, after) if e is not None)
+        lines.append(f"same outcome as the real robot (fell or not, standing at the end or not): {counts} of "
+                     f"{len(before.outcomes)} skill traces")
     return "\n".join(lines)
 
 

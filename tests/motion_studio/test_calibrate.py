@@ -114,6 +114,26 @@ def test_the_slip_fit_starts_from_a_physics_file_that_sets_it(tmp_path: Path) ->
     assert evaluate([trace], fitted).blow_ups == 0
 
 
+def test_the_report_counts_the_replays_that_end_as_the_real_run_did() -> None:
+    # The transfer issue's "same fall/no-fall outcome for every recorded open-loop command stream": standing
+    # agrees; the real walk's commands make ours fall (the real robot walks on); the real back stand-up of the
+    # motions at 35e251e stands the real robot up and ours only with the feet slipping as SimSpark's.
+    from motion_studio.calibration.agreement import Outcome
+    from motion_studio.calibration.report import agreement_table
+
+    names = ["real_0.7.3_skill_stand", "real_0.7.3_skill_walk_forward", "real_0.7.3_skill_standup_front_35e251e"]
+    traces = [load_trace(FIXTURES / f"{name}.jsonl.gz") for name in names]
+    default = evaluate(traces, default_physics_params(), ball_roll=False)
+    slipping = evaluate(traces, default_physics_params(foot_slip_m_s_per_n=0.005), ball_roll=False)
+    assert default.outcomes["skill_stand"] == (Outcome(False, True), Outcome(False, True))
+    assert default.outcomes["skill_walk_forward"] == (Outcome(False, True), Outcome(True, False))
+    assert default.outcomes["skill_standup_front_35e251e"] == (Outcome(True, True), Outcome(True, False))
+    assert slipping.outcomes["skill_standup_front_35e251e"] == (Outcome(True, True), Outcome(True, True))
+    assert (default.same_outcomes(), slipping.same_outcomes()) == (1, 2)
+    assert agreement_table(default, slipping).splitlines()[-1] == (
+        "same outcome as the real robot (fell or not, standing at the end or not): 1 -> 2 of 3 skill traces")
+
+
 def test_a_physics_file_named_by_the_environment_is_used(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     path = tmp_path / "candidate.toml"
     path.write_text("[physics]\nfriction = 7.5\ncontact_solref = [0.03, 1.2]\n")
