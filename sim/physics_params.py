@@ -92,7 +92,7 @@ sessions), benchmarks/bench_sim.py.
   and slip 5e-3 (touchperceptorhandler.rsg; the field's "(setContactSlip 0.1 0.1)" takes one argument, so the field
   keeps the handler's 5e-3, as odecontactjointhandler.cpp's comment says). Measured: the 13 cm walk's stance
   squeezes the feet 4.87 N sideways (real 4.97, these defaults 33.5; tests/sim/test_foot_slip.py); every recorded
-  real trace replayed (``motion-studio calibrate``) 1.200 -> 1.040, the same outcome as the real robot in 48 of 66
+  real trace replayed (``motion-studio calibrate``) 1.205 -> 1.030, the same outcome as the real robot in 49 of 67
   replays instead of 42 (the back stand-ups above all); our agent closed loop beside the real one (``motion-studio
   transfer``) walks within 1-7 % of the real speeds (defaults 1-11 %) and turns 1.00 of the real turn (1.05). Not
   the default: our agents fall far more often than on the real server (3 v 3 against standing robots, 16 matches:
