@@ -660,7 +660,7 @@ class World:
             return
         rotation, origin = self._frp_frames
         own = np.linalg.norm(self.frp_force, axis=1)
-        world_point = self.frp_point_world
+        world_point = self._frp_point_world
         centre = (world_point * own[:, None] + moment) / np.maximum(own + weights, 1e-12)[:, None]
         local_force = (total[:, None, :] @ rotation)[:, 0]
         local_centre = ((centre - origin)[:, None, :] @ rotation)[:, 0]
@@ -878,7 +878,7 @@ class World:
         if self._slip_corners.size:   # the frames and world centre the slip forces are added in
             origin = self.xpos_flat[self._sensor_xpos].reshape(-1, 3)
             self._frp_frames = (rotation, origin)
-            self.frp_point_world = centroid + origin
+            self._frp_point_world = centroid + origin
 
     # ---- sensor readings ------------------------------------------------------------------------------
     def perceptor_rows(self) -> tuple[np.ndarray, list[int]]:
