@@ -120,6 +120,18 @@ class Robot:
     acc_m_s2: np.ndarray = field(default_factory=lambda: np.zeros(3))
 
 
+def _foot_bodies(spec: RobotSpec) -> list[str]:
+    """The robot's force-sensing bodies (its feet, and type 4's toes), each once, sorted."""
+    return sorted({sensor.body for sensor in spec.sensors if sensor.kind == "force"})
+
+
+def _with_surface_layer(element: mujoco.MjsGeom | mujoco.MjsPair, p: PhysicsParams) -> None:
+    """ODE's contact surface layer (``PhysicsParams.surface_layer_m``) on a static geom or a contact pair: active
+    below margin - gap = -layer; MuJoCo's reference distance is that depth, as ODE's."""
+    if p.surface_layer_m > 0.0:
+        element.margin, element.gap = -p.surface_layer_m, 0.0
+
+
 _SLIP_CORNER = "slip_corner"
 _SLIP_REFERENCE = "slip_reference"
 
@@ -215,9 +227,7 @@ class World:
             # MuJoCo takes the larger friction of the two geoms: the field and the goals take the lower of the
             # two robot frictions, so a foot contact has ``friction`` and every other body part ``body_friction``.
             geom.friction = [min(p.friction, _body_friction(p)), 0.005, 0.0001]
-            if p.surface_layer_m > 0.0:
-                # active below margin - gap = -layer; MuJoCo's reference distance is that depth, as ODE's
-                geom.margin, geom.gap = -p.surface_layer_m, 0.0
+            _with_surface_layer(geom, p)
         ball = spec.worldbody.add_body(name="ball", pos=[0.0, 0.0, BALL_RADIUS_M])
         ball.add_freejoint(name="ball")
         ball.add_geom(name="ball", type=mujoco.mjtGeom.mjGEOM_SPHERE, size=[BALL_RADIUS_M, 0, 0],
@@ -234,8 +244,7 @@ class World:
             pair.friction = [mu, mu, 0.005, 0.0001, 0.0001]
             pair.solref = list(p.ball_ground_solref if p.ball_ground_solref is not None else p.ball_solref)
             pair.solimp = list(p.ball_ground_solimp if p.ball_ground_solimp is not None else p.ball_solimp)
-            if p.surface_layer_m > 0.0:
-                pair.margin, pair.gap = -p.surface_layer_m, 0.0
+            _with_surface_layer(pair, p)
         return spec
 
     def add_robot(self, key: int, robot_type: int = 0,
@@ -275,7 +284,7 @@ class World:
         template = build_robot_mjspec(robot_type)
         for exclude in list(template.excludes):  # own parts are filtered by the collision bits instead
             template.delete(exclude)
-        feet = {sensor.body for sensor in spec.sensors if sensor.kind == "force"}
+        feet = _foot_bodies(spec)
         for geom in template.geoms:
             if geom.contype:
                 # MuJoCo filters body pairs first by the OR of their geoms' masks as compiled (the slot bits are
@@ -296,7 +305,7 @@ class World:
                         friction=list(geom.friction), solref=list(geom.solref), solimp=list(geom.solimp),
                         group=3)
         if p.foot_slip_m_s_per_n:
-            _add_foot_slip_dampers(template, sorted(feet))
+            _add_foot_slip_dampers(template, feet)
         for sensor in spec.sensors:
             if sensor.kind == "force":
                 # MuJoCo sums the foot's contacts in C: net force and force-weighted centroid (world frame).
@@ -309,13 +318,12 @@ class World:
     def _add_frictionless_foot_pairs(self, robot: Robot) -> None:
         """Each foot meets the field through an explicit pair without friction (the slip dampers carry it)."""
         p = self.params
-        for body in sorted({s.body for s in robot.spec.sensors if s.kind == "force"}):
+        for body in _foot_bodies(robot.spec):
             pair = self.spec.add_pair(name=f"{robot.prefix}slip_{body}", geomname1=robot.prefix + body,
                                       geomname2="field")
             pair.condim = 1
             pair.solref, pair.solimp = list(p.contact_solref), list(p.contact_solimp)
-            if p.surface_layer_m > 0.0:
-                pair.margin, pair.gap = -p.surface_layer_m, 0.0
+            _with_surface_layer(pair, p)
 
     def remove_robot(self, key: int) -> None:
         """Take a robot out of the world (agent disconnected)."""
@@ -647,14 +655,11 @@ class World:
         velocity = (self.data.site_xpos[self._slip_corners] - start) / self._cycle
         force = np.zeros_like(start)
         force[:, :2] = np.where(held[:, None], velocity[:, :2] * self._slip_damping, 0.0)
-        slots = self._slip_slots
-        total = np.zeros((len(self.frp_force), 3))
-        np.add.at(total, slots, force)
-        weight = np.linalg.norm(force, axis=1)
-        weights = np.zeros(len(self.frp_force))
-        np.add.at(weights, slots, weight)
-        moment = np.zeros((len(self.frp_force), 3))
-        np.add.at(moment, slots, start * weight[:, None])
+        weight = np.linalg.norm(force, axis=1)[:, None]
+        # per foot sensor in one scatter: summed force, summed force length, length-weighted sum of positions
+        sums = np.zeros((len(self.frp_force), 7))
+        np.add.at(sums, self._slip_slots, np.hstack([force, weight, start * weight]))
+        total, weights, moment = sums[:, :3], sums[:, 3], sums[:, 4:]
         touched = self.frp_active & (weights > 0.0)
         if not np.count_nonzero(touched):
             return

@@ -14,12 +14,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from agent.protocol.constants import CYCLE_S
 from agent.protocol.perceptors import Sense
 from agent.protocol.sense import parse_sense
 from motion_studio.realserver.fixtures import Fixture
-from agent.protocol.constants import CYCLE_S
-from motion_studio.realserver.measures import (STOOD_HOLD_S, STOOD_TORSO_Z_M, displacement_m, fallen, stood_index,
-                                               turned_deg)
+from motion_studio.realserver.measures import STOOD_HOLD_S, displacement_m, fallen, stood_index, turned_deg
 from motion_studio.realserver.replay import ReplayStates
 from motion_studio.scenarios import Truth
 
@@ -82,23 +81,26 @@ class Outcome:
     fell: bool
     """Fallen (`fallen`) at some cycle of the skill phase."""
     standing: bool
-    """Standing at the end: the torso centre above STOOD_TORSO_Z_M over the last STOOD_HOLD_S."""
+    """Standing at the end: `stood_index`'s window (the torso centre above 0.30 m for 1 s) is the last one."""
+
+
+def _skill_cycles(replay: Replay) -> list[int]:
+    """The skill phase's cycles that both sides have a pose for."""
+    return [i for i in sorted(replay.real) if i >= replay.fixture.skill_cycle and i in replay.ours]
 
 
 def outcomes(replay: Replay) -> tuple[Outcome, Outcome] | None:
     """The real robot's and ours' outcome of a skill trace; None for a scripted trace (no truth)."""
-    real, ours = replay.real, replay.ours
-    cycles = [i for i in sorted(real) if i >= replay.fixture.skill_cycle and i in ours]
+    cycles = _skill_cycles(replay)
     if len(cycles) < 2:
         return None
-    hold = round(STOOD_HOLD_S / CYCLE_S)
+    last_second = max(0, len(cycles) - round(STOOD_HOLD_S / CYCLE_S))
 
     def outcome(poses: dict[int, Truth]) -> Outcome:
-        last = cycles[-hold:]
         return Outcome(_first_fall(poses, cycles) is not None,
-                       len(last) == hold and all(poses[i].torso_m[2] > STOOD_TORSO_Z_M for i in last))
+                       stood_index([poses[i] for i in cycles], last_second) is not None)
 
-    return outcome(real), outcome(ours)
+    return outcome(replay.real), outcome(replay.ours)
 
 
 def measures(replay: Replay) -> list[Measure]:
@@ -110,7 +112,7 @@ def measures(replay: Replay) -> list[Measure]:
 
 def _pose_measures(replay: Replay) -> list[Measure]:
     real, ours = replay.real, replay.ours
-    cycles = [i for i in sorted(real) if i >= replay.fixture.skill_cycle and i in ours]
+    cycles = _skill_cycles(replay)
     if len(cycles) < 2:
         return []
     out: list[Measure] = []
