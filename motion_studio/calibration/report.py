@@ -6,19 +6,38 @@ import datetime
 import subprocess
 from pathlib import Path
 
+from motion_studio.calibration.agreement import Outcome
 from motion_studio.calibration.fit import Evaluation
 from motion_studio.figures import write_png
 
 
+def ending(outcome: Outcome) -> str:
+    """One word for how a skill trace ended: stood (never fell), rose (fell, standing at the end), down (fell,
+    not standing at the end) or low (never fell but not standing at the end, e.g. crouched)."""
+    if outcome.fell:
+        return "rose" if outcome.standing else "down"
+    return "stood" if outcome.standing else "low"
+
+
+def _ending_column(result: Evaluation, name: str) -> str:
+    """The real and our ending of ``name`` ("rose/down"), with a ``!`` where they differ; blank if scripted."""
+    if name not in result.outcomes:
+        return ""
+    real, ours = result.outcomes[name]
+    return f"{ending(real)}/{ending(ours)}" + ("!" if real != ours else "")
+
+
 def agreement_table(before: Evaluation, after: Evaluation | None = None) -> str:
-    """Per-trace score (0 = agrees) before and after, with each trace's worst measure."""
-    lines = [f"{'trace':32s} {'before':>7s}" + (f" {'after':>7s}" if after else "") + "  worst measure (real / ours)"]
+    """Per-trace score (0 = agrees) before and after, how the real run and our replay ended (a ``!`` marks a
+    different ending: the transfer issue's fall/no-fall target), and each trace's worst measure."""
+    lines = [f"{'trace':32s} {'before':>7s}" + (f" {'after':>7s}" if after else "")
+             + f"  {'ends real/ours':15s} worst measure (real / ours)"]
     for name, score in before.scores.items():
         shown = after or before
         worst = max(shown.details[name], key=lambda m: m.error, default=None)
         text = (f"{worst.name} {worst.real:.3g} / {worst.ours:.3g} {worst.unit}" if worst else "-")
         line = f"{name:32s} {score:7.2f}" + (f" {after.scores[name]:7.2f}" if after else "")
-        lines.append(f"{line}  {text}")
+        lines.append(f"{line}  {_ending_column(shown, name):15s} {text}")
     total = f"{'objective (mean + blow-ups)':32s} {before.objective:7.3f}" + (f" {after.objective:7.3f}" if after else "")
     lines.append(total)
     if before.outcomes:

@@ -130,8 +130,14 @@ def test_the_report_counts_the_replays_that_end_as_the_real_run_did() -> None:
     assert default.outcomes["skill_standup_front_35e251e"] == (Outcome(True, True), Outcome(True, False))
     assert slipping.outcomes["skill_standup_front_35e251e"] == (Outcome(True, True), Outcome(True, True))
     assert (default.same_outcomes(), slipping.same_outcomes()) == (1, 2)
-    assert agreement_table(default, slipping).splitlines()[-1] == (
+    table = agreement_table(default, slipping).splitlines()
+    assert table[-1] == (
         "same outcome as the real robot (fell or not, standing at the end or not): 1 -> 2 of 3 skill traces")
+    # Each row says how both ended, the shown (after) side's, with a mark where they differ.
+    rows = {line.split()[0]: line.split()[3] for line in table[1:-2]}
+    assert rows == {"skill_stand": "stood/stood", "skill_walk_forward": "stood/down!",
+                    "skill_standup_front_35e251e": "rose/rose"}
+    assert agreement_table(default).splitlines()[3].split()[2] == "rose/down!"
 
 
 def test_a_physics_file_named_by_the_environment_is_used(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
