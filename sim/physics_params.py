@@ -252,6 +252,18 @@ sessions), benchmarks/bench_sim.py.
   knees_in phase every time. From a flat back (roll_to_back's third phase since 07e539d) both stand: real 10/10 in
   3.74 s, ours 9/10 in 3.64 s. The contact of the curled feet and buttocks with the ground (ODE's force-dependent
   slip against one Coulomb mu here) is the likely difference; not measured further.
+* **Walking feet land harder and a cycle earlier on the real server (measured 2026-11-29, not matched).** In the
+  real forward walk (fixture ``real_0.7.3_skill_walk_forward``) every joint reaches its command two messages later
+  to within 0.3 deg, except the left hip pitch (llj3), which lags 1.1 deg in the step of every left landing (its
+  10 N·m motor saturates); the real gait is not symmetric: the left foot lands with 127.5 N in its first FRP, the
+  right one with 67.3 N, a cycle early, while the left foot still touches (-0.3 N); steps alternate 4 and 6
+  cycles. Replayed here both feet land with 81-86 N a cycle after the other foot left (our swing foot is 0.8 mm
+  above the ground where the real one touches), steps of 5 and 5, and the hip needs 7.8 of its 10 N·m: no lag,
+  so our hip ends 1 deg further per step from the real one (1.9, 2.9, 4.0 deg after three left landings) and the
+  open-loop walk falls at 4.8 s. Neither stiffer contacts (solimp 0.5/0.6 or 0.9/0.95: the landing's force moves
+  to the next cycle, 6.1 N·m), ODE's surface layer as margin (1 or 2 mm) nor the feet's slip candidate bring the
+  lag (walking and dribbling traces ending as the real ones: 8 of 17 with the defaults, 7-9 with these).
+  (`motion-studio calibrate --only skill_walk --only skill_dribble --only skill_kick_3m`.)
 * **Drag on robots.** SimSpark applies F = -0.01 v and τ = -0.01 ω to every body. Here the whole-body part
   is free-joint damping of the torso (N_bodies x 0.01 on the linear and angular dofs), exact for a rigid
   translation; the drag of limbs swinging relative to the torso is left out (at most 0.06 N·m at full
