@@ -96,3 +96,23 @@ def test_a_ball_half_a_metre_before_the_line_behind_the_keeper_is_pushed_in():
     Measured with 1.0: scored after 17.2 s (the first 13 s the robot, set down facing away, looks for the ball)."""
     engine, host = _striker_against_a_standing_keeper(0, (14.32, -0.31, -64.0), (14.48, -0.26), (14.24, -0.03, 180.0))
     _play_until_scored(engine, host, 25.0)
+
+
+def test_a_ball_rolling_past_is_approached_where_it_will_stop():
+    """Our kick-off as the receiver sees it: unum 2 waits beside the centre circle facing the goal, the ball rolls
+    past it at 4.5 m/s and stops 3.1 m on, 5.4 s later. Walking at the rolling ball's sightings the robot had
+    pushed it 0.5 m on from there 12.4 s after the launch; walking at its rest point (``DribbleConfig.rolling_m_s``)
+    6.4 s after it."""
+    engine, host = alone_in_play(make_agent("Left", 2, 0), 1.05, 1.1, -13.0)
+    engine.world.set_ball((0.3, 0.0, 0.042), (4.5, -0.5, 0.0))
+    rest, pushed_s = None, None
+    for cycle in range(round(9.0 / CYCLE_S)):
+        host.run(1)
+        x, y, _ = engine.world.ball_position()
+        if rest is None and cycle > 50 and math.hypot(*engine.world.ball_velocity()[:2]) < 0.01:
+            rest = (x, y)
+        if rest is not None and math.hypot(x - rest[0], y - rest[1]) > 0.5:
+            pushed_s = cycle * CYCLE_S
+            break
+    assert rest is not None and 2.5 < rest[0] < 4.0, rest
+    assert pushed_s is not None and pushed_s < 7.0, pushed_s
