@@ -170,8 +170,9 @@ class DribbleConfig:
     the receiver turned toward the ball rolling past it, 80 deg away from where it stopped 2.8 m on, and back
     again: 8 s from the kick to its first push (ours, 3 v 3 against robots that only stand, seed 0); with the rest
     point 5 s. The receiver alone, the ball launched past it at 4.5 m/s (the scenario test): pushed 0.5 m on from
-    where it stopped 12.4 s after the launch before, 6.4 s after. 3 v 3 against robots that only stand on ours,
-    seeds 0-15: 27 goals either way, falls 4 -> 3."""
+    where it stopped 12.4 s after the launch before, 6.4 s after. 3 v 3 against robots that only stand, 120 s:
+    ours, seeds 0-15, 27 goals either way, falls 4 -> 3; the real rcssserver3d 0.7.3, seeds 1-16, 20 -> 22 goals,
+    falls 5 -> 4."""
     free_line_field_y_m: float = 8.5
     """A line whose 3 m ahead of the ball leaves |y| <= this is turned back toward the target [m] (the touch
     line is at 10 m: a kick-in for the opponents)."""
