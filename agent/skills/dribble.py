@@ -166,7 +166,7 @@ class DribbleConfig:
     """... none nearer than this (near the goal the line to it matters); in between it narrows linearly [m]."""
     rolling_m_s: float = 0.6
     """A ball rolling at least this fast and farther than ``near_ball_m`` is approached where it will come to
-    rest (``agent.world.ball_track``), not where it was seen [m/s] (0 or inf = never). Why: after our kick-off
+    rest (``agent.world.ball_track``), not where it was seen [m/s] (inf = never). Why: after our kick-off
     the receiver turned toward the ball rolling past it, 80 deg away from where it stopped 2.8 m on, and back
     again: 8 s from the kick to its first push (ours, 3 v 3 against robots that only stand, seed 0); with the rest
     point 5 s. The receiver alone, the ball launched past it at 4.5 m/s (the scenario test): pushed 0.5 m on from
@@ -219,7 +219,8 @@ class Dribble(Skill):
         report_walk_odometry(world, motion)
         pose = world.pose
         ball = world.ball
-        if ball is not None and ball.position is not None and ball.age_s(world.now_s) <= self.config.max_ball_age_s:
+        seen = ball is not None and ball.position is not None and ball.age_s(world.now_s) <= self.config.max_ball_age_s
+        if seen:
             believed: tuple[float, float] | None = ball.position
         else:
             believed = self.ball_source(world) if self.ball_source is not None else None
@@ -229,7 +230,8 @@ class Dribble(Skill):
         if pose is None or believed is None:
             self.mode = "search"
             return self._search(motion)
-        believed = self._rest_point(world, pose, believed)
+        if seen:
+            believed = self._rest_point(world, pose, believed)
         self._search_cycles = 0
         bx, by = believed
         line = self.line_rad(pose.x_m, pose.y_m, (bx, by))
@@ -279,8 +281,9 @@ class Dribble(Skill):
         return MotionRequest(request.motion, request.lean, request.turn_deg, request.gain, head)
 
     def _rest_point(self, world: WorldModel, pose: Pose2D, ball: tuple[float, float]) -> tuple[float, float]:
-        """``ball`` [m, team frame], or where it will stop when it rolls at ``rolling_m_s`` or faster, the robot
-        neither pushing it nor within ``near_ball_m`` of it (there the feet play the ball as it is)."""
+        """``ball`` (the own fresh sighting) [m, team frame], or where it will stop when it rolls at ``rolling_m_s``
+        or faster, the robot neither pushing it nor within ``near_ball_m`` of it (there the feet play the ball as
+        it is). Teammates' reports are taken as they are: the track fits the own sightings only."""
         velocity = world.ball_track.velocity_m_s()
         if self.pushing or self._short is not None or velocity is None \
                 or math.hypot(*velocity) < self.config.rolling_m_s \
