@@ -284,10 +284,11 @@ class Dribble(Skill):
         """``ball`` (the own fresh sighting) [m, team frame], or where it will stop when it rolls at ``rolling_m_s``
         or faster, the robot neither pushing it nor within ``near_ball_m`` of it (there the feet play the ball as
         it is). Teammates' reports are taken as they are: the track fits the own sightings only."""
-        velocity = world.ball_track.velocity_m_s()
-        if self.pushing or self._short is not None or velocity is None \
-                or math.hypot(*velocity) < self.config.rolling_m_s \
+        if self.pushing or self._short is not None \
                 or math.hypot(ball[0] - pose.x_m, ball[1] - pose.y_m) <= self.config.near_ball_m:
+            return ball   # decided without the track's least-squares fit (the on-ball player's every cycle)
+        velocity = world.ball_track.velocity_m_s()
+        if velocity is None or math.hypot(*velocity) < self.config.rolling_m_s:
             return ball
         return world.ball_track.rest_point() or ball
 
