@@ -33,6 +33,10 @@ WALKS = (FORWARD, FAST, BACKWARD, LEFT, RIGHT)
 #: The walks that go forward and steer with the walk lean.
 FORWARD_WALKS = (FORWARD, FAST)
 TURN_LEFT, TURN_RIGHT = "turn_left", "turn_right"
+#: The orbits: sideways walks that turn as they go, circling a point ahead (``motions/params/gait.toml``: orbit_left
+#: steps right and turns left round a ball about 0.45 m ahead).
+ORBIT_LEFT, ORBIT_RIGHT = "orbit_left", "orbit_right"
+ORBITS = (ORBIT_LEFT, ORBIT_RIGHT)
 STAND = "stand"
 #: Stopping distance used when a walk file has no ``measured_stop_m`` constant [m].
 DEFAULT_STOP_M = 0.12

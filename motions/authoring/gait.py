@@ -360,7 +360,8 @@ def build_stance(name: str, params: GaitParams, solver: KeyframeSolver | None = 
 
 
 #: Motions written by ``python -m motions.authoring.gait`` (the stance first: walks start from it).
-MOTION_NAMES = ("stand", "walk_forward", "walk_fast", "walk_backward", "walk_left", "walk_right")
+MOTION_NAMES = ("stand", "walk_forward", "walk_fast", "walk_backward", "walk_left", "walk_right", "orbit_left",
+                "orbit_right")
 #: Section keys of the parameter file copied into a walk's constants (the tuner's measurements).
 MEASURED_KEYS = ("measured_forward_m_s", "measured_left_m_s", "measured_stop_m")
 COMMAND = "python -m motions.authoring.gait"

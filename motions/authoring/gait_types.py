@@ -28,7 +28,7 @@ from motions.authoring.gait import MEASURED_KEYS, GaitParams, build_walk, stance
 #: Robot types whose leg geometry differs from type 0 (types 2 and 4 share type 0's leg lengths).
 TYPES_WITH_OWN_WALKS = (1, 3)
 #: The walks written per type (``stand`` stays the shared type-0 file).
-WALK_NAMES = ("walk_forward", "walk_fast", "walk_backward", "walk_left", "walk_right")
+WALK_NAMES = ("walk_forward", "walk_fast", "walk_backward", "walk_left", "walk_right", "orbit_left", "orbit_right")
 COMMAND = "python -m motions.authoring.gait_types"
 
 

@@ -46,6 +46,24 @@ def test_other_walks_move_their_way(library, name, direction):
     assert run.settled
 
 
+@pytest.mark.parametrize("robot_type", [0, 1, 2, 3, 4])
+@pytest.mark.parametrize("name, sign", [("orbit_left", 1.0), ("orbit_right", -1.0)])
+def test_an_orbit_circles_the_point_ahead_of_the_robot(name, sign, robot_type):
+    """5 s of an orbit from standing: the robot turns 80 deg or more its way while the point that lay 0.45 m ahead
+    at the start stays within 0.15 m of 0.45 m ahead (the ball the dribble lines up behind); it stops standing."""
+    run = run_walk(default_library(robot_type), name, 5.0, position_m=(-5.0, 0.0), x_limit_m=None,
+                   robot_type=robot_type)
+    assert not run.fell and not run.fell_stopping and run.settled
+    assert sign * run.heading_change_deg >= 80.0
+    start, end = run.truths[0], run.walk_end
+    heading = math.radians(start.heading_deg)
+    centre = (start.torso_m[0] + 0.45 * math.cos(heading), start.torso_m[1] + 0.45 * math.sin(heading))
+    heading = math.radians(end.heading_deg)
+    dx, dy = centre[0] - end.torso_m[0], centre[1] - end.torso_m[1]
+    ego = (dx * math.cos(heading) + dy * math.sin(heading), -dx * math.sin(heading) + dy * math.cos(heading))
+    assert math.dist(ego, (0.45, 0.0)) <= 0.15, ego
+
+
 def test_full_lean_curves_the_walk_to_its_side(library):
     runs = {lean: run_walk(library, "walk_forward", 6.0, position_m=(-8.0, 0.0), lean=lean, x_limit_m=None)
             for lean in (1.0, 0.0, -1.0)}
