@@ -6,7 +6,8 @@ and keeps going. This skill is a moving-target walk: behind the ball (on the lin
 walks at a point just beyond the ball on that line, so each step pushes the ball on toward the target;
 elsewhere it walks to the approach point ``behind_m`` behind the ball on that line, going round the ball
 when it stands on the wrong side. Steering is the walk's (``agent.skills.walk._Steer``: lean within a band,
-a turn motion beyond); far from the ball other robots are avoided (``agent.skills.avoid``: walking into an
+a turn motion beyond); near the ball, facing off the target direction, the robot circles the ball with an orbit
+(``orbit_left`` / ``orbit_right``) or lines up with short walks; far from the ball other robots are avoided (``agent.skills.avoid``: walking into an
 opponent is a charging foul).
 
 ``done`` never becomes True by itself: the caller replaces the skill (e.g. when a kick is on).
@@ -148,8 +149,9 @@ class DribbleConfig:
     -> 24.0 s (0.38 -> 0.42 m/s), 4 m after a 90 deg turn left 29.2 -> 22.9 s, right 19.8 -> 14.9 s; the ball
     within 0.5 m of the torso for a smaller share (0.47 / 0.82 / 0.86 -> 0.45 / 0.64 / 0.56: the orbit keeps it
     near 0.5 m). Ours (``motion-studio bench skills --skill dribble``, seed 0): straight 0.478 -> 0.535 m/s, the
-    turns 18.2 -> 14.3 / 15.4 s. 3 v 3 against robots that only stand, 120 s: ours, seeds 0-15, 27 -> 25 goals;
-    the real server, seeds 1-15 (with the 8-cycle orbit measured first), 20 -> 19 goals, falls 4 -> 6..."""
+    turns 18.2 -> 14.3 / 15.4 s. Not in matches (``agent.team.soccer_behavior.MATCH_DRIBBLE`` turns it off): 3 v 3
+    against robots that only stand, 120 s, ours, seeds 0-15, 27 -> 25 goals; the real server, seeds 1-16, 22 -> 16
+    goals, falls 4 -> 1 (with the 8-cycle orbit measured first, seeds 1-15: 20 -> 19 goals, falls 4 -> 6)..."""
     orbit_done_deg: float = 10.0
     """... until it faces the target direction within this [deg] (its stop turns it a few degrees more), the ball
     leaves the ``orbit_ball_deg`` cone, or the ball is no longer near. An orbit starts only with the ball at least
