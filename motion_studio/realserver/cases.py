@@ -130,6 +130,8 @@ CASES: dict[str, Case] = {
     "walk_backward": replace(_walk("walk_backward"), position_m=(-3.0, 0.0)),
     "walk_left": replace(_walk("walk_left"), position_m=(-5.0, -4.0)),
     "walk_right": replace(_walk("walk_right"), position_m=(-5.0, 4.0)),
+    "orbit_left": _walk("orbit_left", seconds=5.0),
+    "orbit_right": _walk("orbit_right", seconds=5.0),
     "standup_back": Case("standup_back", StandUp, 500, fall="back"),
     "standup_front": Case("standup_front", StandUp, 500, fall="front"),
     "standup_side": Case("standup_side", StandUp, 500, fall="side", motion="roll_to_back"),
@@ -272,7 +274,8 @@ CASES["walk_to_ball_beside"] = Case(
     STAND_CYCLES + 600, ball_m=(-8.0 + WALK_TO_BALL_BESIDE_M[0], WALK_TO_BALL_BESIDE_M[1]))
 for _case in list(CASES.values()):
     if _case.motion is None and _case.name in ("stand", "turn_left", "turn_right", "walk_forward", "walk_fast",
-                                               "walk_backward", "walk_left", "walk_right"):
+                                               "walk_backward", "walk_left", "walk_right", "orbit_left",
+                                               "orbit_right"):
         CASES[_case.name] = replace(_case, motion=_case.name)
 CASES["standup_back"] = replace(CASES["standup_back"], motion="standup_back")
 CASES["standup_front"] = replace(CASES["standup_front"], motion="standup_front")

@@ -46,6 +46,7 @@ def figures(run: Run, case: Case) -> dict[str, float | str]:
         start = run.truths[min(150, len(run.truths) - 1)]
         if start is not None and fall is None:
             out["speed after 3 s [m/s]"] = math.dist(start.torso_m[:2], end.torso_m[:2]) / (seconds - 3.0)
+    out.update(orbit_figures(run, case))
     turns = [i for i, name in run.completions if name.startswith("turn_")]
     if turns:
         headings = []
@@ -73,6 +74,40 @@ def figures(run: Run, case: Case) -> dict[str, float | str]:
         out["stood up after [s]"] = math.nan if stood is None else (stood - fall) * CYCLE_S
         out["upright at end"] = "yes" if truths[-1].up_z > 0.9 and truths[-1].torso_m[2] > 0.3 else "no"
     return out
+
+
+def orbit_figures(run: Run, case: Case) -> dict[str, float]:
+    """An orbit case's circle (``circle_fit`` of the torso's path while it walks): its centre ahead of and left of
+    the start pose, and its radius [m]; empty for any other case or a run that fell (shared by ``motion-studio real
+    skills`` and ``motion-studio transfer``)."""
+    if case.motion is None or not case.motion.startswith("orbit_") or first_fall(run.truths) is not None:
+        return {}
+    walked = [t for t in run.truths[:case.walk_cycles] if t is not None]
+    circle = circle_fit([t.torso_m[:2] for t in walked])
+    if not walked or circle is None:
+        return {}
+    (cx, cy), radius = circle
+    first = walked[0]
+    c, s = math.cos(math.radians(first.heading_deg)), math.sin(math.radians(first.heading_deg))
+    ex, ey = cx - first.torso_m[0], cy - first.torso_m[1]
+    return {"orbit centre ahead [m]": c * ex + s * ey, "orbit centre left [m]": -s * ex + c * ey,
+            "orbit radius [m]": radius}
+
+
+def circle_fit(points: list[tuple[float, float]]) -> tuple[tuple[float, float], float] | None:
+    """Centre and radius [m] of the circle nearest to ``points`` (algebraic least squares: x² + y² = 2ax + 2by + c);
+    None for fewer than three points or points on a line. Why: an orbit walks round a point ahead of its start, and
+    where that point lies says whether the ball it circles stays ahead of the feet."""
+    import numpy as np
+
+    if len(points) < 3:
+        return None
+    xy = np.asarray(points, dtype=float)
+    matrix = np.column_stack([2.0 * xy[:, 0], 2.0 * xy[:, 1], np.ones(len(xy))])
+    (a, b, c), _, rank, _ = np.linalg.lstsq(matrix, (xy ** 2).sum(axis=1), rcond=None)
+    if rank < 3:
+        return None
+    return (float(a), float(b)), float(math.sqrt(max(0.0, c + a * a + b * b)))
 
 
 def dribble_figures(run: Run, case: Case) -> dict[str, float | str]:

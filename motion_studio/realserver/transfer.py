@@ -27,7 +27,7 @@ from motion_studio.realserver.errors import FixtureError, RealServerError
 from motion_studio.realserver.fixtures import Fixture, fixture_path, read_fixture, write_fixture
 from motion_studio.realserver.measures import (ball_travel_m, count_falls, displacement_m, first_fall, known,
                                                stood_index, turned_deg, wrap_deg)
-from motion_studio.realserver.skill_figures import dribble_figures
+from motion_studio.realserver.skill_figures import dribble_figures, orbit_figures
 from motion_studio.realserver.skill_runs import Run
 
 TOOL = "motion-studio transfer"
@@ -287,6 +287,10 @@ def run_figures(pair: Pair) -> dict[str, dict[str, float | str]]:
             figures["torso z mean [m]"] = statistics.fmean(t.torso_m[2] for t in truths)
         elif case.dribble is not None:
             figures.update(dribble_figures(run, case))
+        elif case.name.startswith("orbit_"):
+            last = known(run.truths, case.walk_cycles - 1)
+            figures["heading change [deg]"] = wrap_deg(last.heading_deg - truths[0].heading_deg)
+            figures.update(orbit_figures(run, case))
         elif case.ball_m is not None and case.name in BALL_CASES:
             figures["ball moved [m]"] = ball_travel_m(truths[0], truths[-1])
         out[side] = figures

@@ -25,6 +25,9 @@ SINGLE_ROWS = (
     ("walk_backward", "speed [m/s]", "walk backward: speed over 10 s [m/s]"),
     ("walk_left", "speed [m/s]", "walk left: speed over 10 s [m/s]"),
     ("walk_right", "speed [m/s]", "walk right: speed over 10 s [m/s]"),
+    *(row for side in ("left", "right") for row in (
+        (f"orbit_{side}", "heading change [deg]", f"orbit_{side}: turned in 5 s [deg]"),
+        (f"orbit_{side}", "orbit centre ahead [m]", f"orbit_{side}: centre ahead of the start [m]"))),
     ("turn_left", "turn per motion [deg]", "turn_left: turn per motion [deg]"),
     ("turn_right", "turn per motion [deg]", "turn_right: turn per motion [deg]"),
     ("turn_by_90", "turned [deg]", "TurnBy(90): turned [deg]"),

@@ -77,6 +77,33 @@ def test_ball_and_dribble_rows_compare_the_recorded_real_runs_with_ours(tmp_path
     assert math.isnan(rows["KickToward from 45 cm behind the ball: ball moved [m]"].real)   # not in this run
 
 
+def test_orbit_rows_give_the_recorded_real_orbit_and_its_centre(tmp_path: Path) -> None:
+    # Recorded 2026-11-29 (motion-studio real skills orbit_left orbit_right --fixture): 5 s of each orbit from standing
+    # on the real server. Its torso circles a point 0.54-0.56 m ahead of the start, on the line ahead (the gait is
+    # authored for 0.45 m: 0.06 m / 7.6 deg a stride). Ours replays the real commands open loop (shorter turn).
+    result = _replayed(tmp_path, "orbit_left", "orbit_right")
+    assert result.errors == []
+    rows = {row.figure: row for row in transfer_report.rows(result.pairs, result.figures, starts=1)}
+    assert rows["orbit_left: turned in 5 s [deg]"].real == pytest.approx(108.8, abs=0.2)
+    assert rows["orbit_right: turned in 5 s [deg]"].real == pytest.approx(-106.0, abs=0.2)
+    for side in ("left", "right"):
+        real = result.figures[f"orbit_{side}"]["real"]
+        assert real["orbit centre ahead [m]"] == pytest.approx(0.55, abs=0.015)
+        assert abs(real["orbit centre left [m]"]) < 0.04
+        assert real["orbit radius [m]"] == pytest.approx(0.53, abs=0.015)
+        assert rows[f"orbit_{side}: turned in 5 s [deg]"].ours * (1 if side == "left" else -1) > 60.0
+
+
+def test_a_circle_fit_finds_the_centre_and_radius_of_points_on_an_arc() -> None:
+    from motion_studio.realserver.skill_figures import circle_fit
+
+    arc = [(1.0 + 0.5 * math.cos(a / 10.0), -2.0 + 0.5 * math.sin(a / 10.0)) for a in range(20)]
+    (x, y), radius = circle_fit(arc)
+    assert (x, y, radius) == (pytest.approx(1.0), pytest.approx(-2.0), pytest.approx(0.5))
+    assert circle_fit([(0.0, 0.0), (1.0, 1.0), (2.0, 2.0)]) is None   # on a line
+    assert circle_fit([(0.0, 0.0), (1.0, 1.0)]) is None
+
+
 def test_cases_left_out_of_a_selection_read_not_run_and_missing_fixtures_no_fixture() -> None:
     """A replay of some cases (``--case``) notes the others "not run", not "no fixture" (it said "no fixture" of
     every case it was not asked for); a selected case without runs keeps the caller's note."""
