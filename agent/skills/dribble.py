@@ -7,8 +7,8 @@ walks at a point just beyond the ball on that line, so each step pushes the ball
 elsewhere it walks to the approach point ``behind_m`` behind the ball on that line, going round the ball
 when it stands on the wrong side. Steering is the walk's (``agent.skills.walk._Steer``: lean within a band,
 a turn motion beyond); near the ball, facing off the target direction, the robot circles the ball with an orbit
-(``orbit_left`` / ``orbit_right``) or lines up with short walks; far from the ball other robots are avoided (``agent.skills.avoid``: walking into an
-opponent is a charging foul).
+(``orbit_left`` / ``orbit_right``) or lines up with short walks; far from the ball other robots are avoided
+(``agent.skills.avoid``: walking into an opponent is a charging foul).
 
 ``done`` never becomes True by itself: the caller replaces the skill (e.g. when a kick is on).
 All positions in the team frame [m], angles [deg] where named ``_deg``.
@@ -339,8 +339,8 @@ class Dribble(Skill):
         walking_forward = motion.motion_name in FORWARD_WALKS and not motion.stopping
         if abs(error_deg) > c.near_heading_deg:
             if distance >= c.turn_clear_m and self._orbit_fits(motion, ball_ego):
-                if walking_forward or (not motion.idle and motion.motion_name in WALKS):
-                    return MotionRequest(None, head_deg=head)  # stop first
+                if not motion.idle and motion.motion_name in WALKS:
+                    return MotionRequest(None, head_deg=head)  # stop the walk under way first
                 return MotionRequest(ORBIT_LEFT if error_deg > 0.0 else ORBIT_RIGHT, head_deg=head)
             if distance >= c.turn_clear_m and self._steer.can_turn(motion):
                 return self._steer.turn(motion, error_deg)

@@ -6,6 +6,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 
+from agent.world.frames import Pose2D
 from motion_studio.realserver.cases import CYCLE_S
 from motion_studio.scenarios import FALL_TORSO_Z_M, FALL_UP_Z, Truth
 
@@ -76,11 +77,14 @@ def turned_deg(truths: Truths, start: int = 0, end: int | None = None) -> float:
     return float(sum(wrap_deg(b - a) for a, b in zip(headings, headings[1:])))
 
 
+def pose_of(truth: Truth) -> Pose2D:
+    """The torso's ground pose of a truth (field frame)."""
+    return Pose2D(truth.torso_m[0], truth.torso_m[1], math.radians(truth.heading_deg))
+
+
 def displacement_m(first: Truth, last: Truth) -> tuple[float, float]:
     """(forward, left) of ``last``'s torso in the frame of ``first`` [m]."""
-    c, s = math.cos(math.radians(first.heading_deg)), math.sin(math.radians(first.heading_deg))
-    dx, dy = last.torso_m[0] - first.torso_m[0], last.torso_m[1] - first.torso_m[1]
-    return c * dx + s * dy, -s * dx + c * dy
+    return pose_of(first).to_ego(last.torso_m[0], last.torso_m[1])
 
 
 def ball_travel_m(first: Truth, last: Truth) -> float:

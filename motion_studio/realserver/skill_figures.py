@@ -7,7 +7,7 @@ import math
 
 from motion_studio.realserver.cases import CYCLE_S, STAND_CYCLES, Case
 from motion_studio.skill_bench.dribble import KEEP_M, measure
-from motion_studio.realserver.measures import fallen, first_fall, stood_index, wrap_deg
+from motion_studio.realserver.measures import fallen, first_fall, pose_of, stood_index, wrap_deg
 from motion_studio.realserver.skill_runs import Run
 
 
@@ -87,11 +87,8 @@ def orbit_figures(run: Run, case: Case) -> dict[str, float]:
     if not walked or circle is None:
         return {}
     (cx, cy), radius = circle
-    first = walked[0]
-    c, s = math.cos(math.radians(first.heading_deg)), math.sin(math.radians(first.heading_deg))
-    ex, ey = cx - first.torso_m[0], cy - first.torso_m[1]
-    return {"orbit centre ahead [m]": c * ex + s * ey, "orbit centre left [m]": -s * ex + c * ey,
-            "orbit radius [m]": radius}
+    ahead, left = pose_of(walked[0]).to_ego(cx, cy)
+    return {"orbit centre ahead [m]": ahead, "orbit centre left [m]": left, "orbit radius [m]": radius}
 
 
 def circle_fit(points: list[tuple[float, float]]) -> tuple[tuple[float, float], float] | None:

@@ -251,6 +251,12 @@ def walk_20m(run: Run) -> tuple[float, int]:
     return (math.nan if reached is None else reached * CYCLE_S), len(falls)
 
 
+def walk_heading_change_deg(run: Run, case: Case) -> float:
+    """Heading at the last walking cycle (the last known truth up to it) minus the first known heading [deg]."""
+    first = known(run.truths, 0, backwards=False)
+    return wrap_deg(known(run.truths, case.walk_cycles - 1).heading_deg - first.heading_deg)
+
+
 def run_figures(pair: Pair) -> dict[str, dict[str, float | str]]:
     """The figures of one pair: {"real": {...}, "ours": {...}} (JSON-ready)."""
     out: dict[str, dict[str, float | str]] = {}
@@ -281,15 +287,13 @@ def run_figures(pair: Pair) -> dict[str, dict[str, float | str]]:
                 (t.torso_m[2] for t in run.truths[FALL_SCRIPT_CYCLES:] if t is not None), default=math.nan)
         elif case.name in (c.name for c in WALK_20M_CASES):
             figures["20 m after [s]"], figures["falls"] = walk_20m(run)
-            last = known(run.truths, case.walk_cycles - 1)
-            figures["heading change [deg]"] = wrap_deg(last.heading_deg - truths[0].heading_deg)
+            figures["heading change [deg]"] = walk_heading_change_deg(run, case)
         elif case.name == "stand":
             figures["torso z mean [m]"] = statistics.fmean(t.torso_m[2] for t in truths)
         elif case.dribble is not None:
             figures.update(dribble_figures(run, case))
         elif case.name.startswith("orbit_"):
-            last = known(run.truths, case.walk_cycles - 1)
-            figures["heading change [deg]"] = wrap_deg(last.heading_deg - truths[0].heading_deg)
+            figures["heading change [deg]"] = walk_heading_change_deg(run, case)
             figures.update(orbit_figures(run, case))
         elif case.ball_m is not None and case.name in BALL_CASES:
             figures["ball moved [m]"] = ball_travel_m(truths[0], truths[-1])

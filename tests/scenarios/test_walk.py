@@ -13,6 +13,7 @@ from agent.motion import default_library
 from agent.skills.base import PlayMotion
 from agent.skills.walk import WalkConfig, WalkDirection, WalkTo
 from agent.skills.walk_ball import WalkToBall
+from motion_studio.realserver.measures import pose_of
 from motion_studio.scenarios import Scenario
 from motion_studio.walk_rollout import run_walk
 
@@ -55,12 +56,8 @@ def test_an_orbit_circles_the_point_ahead_of_the_robot(name, sign, robot_type):
                    robot_type=robot_type)
     assert not run.fell and not run.fell_stopping and run.settled
     assert sign * run.heading_change_deg >= 80.0
-    start, end = run.truths[0], run.walk_end
-    heading = math.radians(start.heading_deg)
-    centre = (start.torso_m[0] + 0.45 * math.cos(heading), start.torso_m[1] + 0.45 * math.sin(heading))
-    heading = math.radians(end.heading_deg)
-    dx, dy = centre[0] - end.torso_m[0], centre[1] - end.torso_m[1]
-    ego = (dx * math.cos(heading) + dy * math.sin(heading), -dx * math.sin(heading) + dy * math.cos(heading))
+    centre = pose_of(run.truths[0]).to_team(0.45, 0.0)
+    ego = pose_of(run.walk_end).to_ego(*centre)
     assert math.dist(ego, (0.45, 0.0)) <= 0.15, ego
 
 
