@@ -17,6 +17,9 @@ the opponents' kick-offs were where a 3 v 3 against standing robots spent its 12
 Run::
 
     python -m motion_studio.match_diagnose --players 3 --duration 120 --seed 0 --right standing
+
+With ``--matches N --out DIR`` it watches seeds --seed.. and prints per-match means
+(``motion_studio.match_diagnose_batch``).
 """
 
 from __future__ import annotations
@@ -25,6 +28,7 @@ import argparse
 import collections
 import math
 from dataclasses import dataclass, field
+from pathlib import Path
 
 from motion_studio.match_agents import TEAM_KINDS, SideAgents, make_agent
 from sim.engine import SimEngine
@@ -205,8 +209,14 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--left", default="ours", choices=TEAM_KINDS, help="left team (default: ours)")
     parser.add_argument("--right", default="ours", choices=TEAM_KINDS, help="right team (default: ours)")
     parser.add_argument("--verbose", action="store_true", help="print each fall's recent transitions")
+    parser.add_argument("--matches", type=int, default=1,
+                        help="watch this many matches (seeds --seed..) and print per-match means (needs --out)")
+    parser.add_argument("--out", type=Path, help="folder of the matches' checkpoint (diagnoses.jsonl) and plot")
+    parser.add_argument("--workers", type=int, default=1, help="processes for --matches")
     args = parser.parse_args(argv)
     config = MatchConfig(players_per_team=args.players, duration_s=args.duration, seed=args.seed)
+    if args.matches > 1 or args.out is not None:
+        return _batch(args, config)
     result = diagnose(config, SideAgents(args.left, args.right, team_left=config.team_left))
     for fall in result.falls:
         print(f"fall t={fall.time_s:.2f} {fall.team} {fall.unum} (type {fall.robot_type}) during {fall.cause}, "
@@ -231,6 +241,23 @@ def main(argv: list[str] | None = None) -> int:
         print(f"{side} ({kind}) on-ball time in PlayOn, {total:.1f} s, by ball zone and activity:")
         for zone, activity, seconds in rows[:ON_BALL_ROWS]:
             print(f"  {zone:15s} {activity:22s} {seconds:6.1f} s  {100 * seconds / total:4.0f} %")
+    return 0
+
+
+def _batch(args: argparse.Namespace, config: MatchConfig) -> int:
+    from motion_studio import match_diagnose_batch as batch
+
+    if args.out is None:
+        raise SystemExit("error: --matches needs --out (the folder of its checkpoint and plot)")
+    if args.matches < 1 or args.workers < 1:
+        raise SystemExit("error: --matches and --workers must be at least 1")
+    kinds = (args.left, args.right)
+    rows = batch.run(config, SideAgents(*kinds, team_left=config.team_left), args.matches, args.seed, args.out,
+                     args.workers)
+    figures = batch.aggregate(rows)
+    print(batch.report(figures, kinds))
+    if figures.matches:
+        print("plot:", batch.plot(figures, kinds, args.out / batch.PLOT_NAME))
     return 0
 
 

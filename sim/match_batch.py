@@ -82,9 +82,13 @@ def batch_configs(base: MatchConfig, matches: int, first_seed: int = 0) -> list[
     return configs
 
 
+#: What plays one match of a batch: (config, agent factory) -> a JSON-able result with the config's ``match_id``.
+MatchRunner = Callable[[MatchConfig, AgentFactory], dict[str, Any]]
+
+
 def run_batch(configs: Iterable[MatchConfig], make_agent: AgentFactory, checkpoint: Path, workers: int = 1,
               on_result: Callable[[dict[str, Any]], None] | None = None,
-              executor: Executor | None = None) -> list[dict[str, Any]]:
+              executor: Executor | None = None, run: MatchRunner = run_one) -> list[dict[str, Any]]:
     """Run the matches not yet in ``checkpoint``; returns all results in the checkpoint afterwards.
 
     Args:
@@ -94,6 +98,8 @@ def run_batch(configs: Iterable[MatchConfig], make_agent: AgentFactory, checkpoi
         workers: processes (1 = run here, no pool).
         on_result: progress callback per finished match.
         executor: an executor to use instead of a local process pool.
+        run: what plays one match (``run_one``; a picklable module-level function, e.g. the watched match of
+            ``motion_studio.match_diagnose``), which reports its own failures as results.
     """
     checkpoint.parent.mkdir(parents=True, exist_ok=True)
     done = finished_ids(checkpoint)
@@ -108,12 +114,12 @@ def run_batch(configs: Iterable[MatchConfig], make_agent: AgentFactory, checkpoi
 
     if workers <= 1 and executor is None:
         for config in todo:
-            record(run_one(config, make_agent))
+            record(run(config, make_agent))
     else:
         # workers end with this process even when it is killed (they would otherwise wait on the queue for ever)
         pool = executor or ProcessPoolExecutor(max_workers=workers, initializer=end_with_parent)
         try:
-            futures = [pool.submit(run_one, config, make_agent) for config in todo]
+            futures = [pool.submit(run, config, make_agent) for config in todo]
             for future in as_completed(futures):
                 record(future.result())
         finally:
