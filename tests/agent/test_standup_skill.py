@@ -198,6 +198,30 @@ def test_a_robot_on_its_side_rolls_once_then_stands_up_from_the_side_it_leans_to
     assert behavior.standup.sides == ["back"]  # SIDE leans back (+y)
 
 
+def test_after_the_roll_onto_its_back_the_back_standup_starts_at_once_while_the_robot_still_rolls():
+    behavior, world = _behavior(roll=True), _world()
+    _set(world, SIDE, feet={}, up_z=0.1)
+    _cycle(behavior, world, CONFIRM_CYCLES + QUIET_CYCLES)
+    _set(world, (0.3 * G, 0.3 * G, 0.1 * G), gyro=(90.0, 30.0, 0.0), feet={}, up_z=0.3)  # rolling: not at rest
+    _play_to_end(behavior, world, SIDE_ROLL_MOTION)
+    _cycle(behavior, world, 2)  # the skill sees the roll's end, then starts the stand-up
+    assert behavior.standup.sides == ["back"] and behavior.motion.motion_name == "standup_back"
+
+
+def test_after_a_roll_that_left_it_on_its_side_or_front_the_robot_rests_and_reads_the_side_first():
+    for acc, side in (((0.72 * G, 0.23 * G, 0.1 * G), "back"), ((0.3 * G, -0.5 * G, 0.1 * G), "front")):
+        behavior, world = _behavior(roll=True), _world()
+        _set(world, SIDE, feet={}, up_z=0.1)
+        _cycle(behavior, world, CONFIRM_CYCLES + QUIET_CYCLES)
+        _set(world, acc, gyro=(90.0, 30.0, 0.0), feet={}, up_z=0.3)
+        _play_to_end(behavior, world, SIDE_ROLL_MOTION)
+        _cycle(behavior, world, 3)
+        assert behavior.standup.attempts == 0  # still tumbling: it waits
+        _set(world, SIDE if side == "back" else FRONT, feet={}, up_z=0.1)
+        _cycle(behavior, world, QUIET_CYCLES + 1)
+        assert behavior.standup.sides == [side]
+
+
 def test_a_robot_on_its_side_turned_to_its_front_plays_the_front_standup_without_a_roll():
     behavior, world = _behavior(roll=True), _world()
     _set(world, (0.9 * G, -0.4 * G, 0.5), feet={}, up_z=0.1)  # about 66 deg from its front
