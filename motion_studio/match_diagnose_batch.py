@@ -20,9 +20,11 @@ from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
+from tqdm import tqdm
+
 from motion_studio.match_diagnose import ZONE_NAMES, Diagnosis, diagnose
 from sim.match import AgentFactory, MatchConfig
-from sim.match_batch import batch_configs, run_batch
+from sim.match_batch import batch_configs, finished_ids, run_batch
 
 logger = logging.getLogger(__name__)
 
@@ -152,13 +154,9 @@ def run(base: MatchConfig, agents_of: AgentFactory, matches: int, first_seed: in
         workers: int = 1) -> list[dict[str, Any]]:
     """Watch ``matches`` matches (seeds first_seed..) in ``workers`` processes; every row of the checkpoint
     ``out/diagnoses.jsonl`` afterwards (earlier runs' rows of these seeds are kept, not played again)."""
-    from tqdm import tqdm
-
     configs = batch_configs(replace(base, match_id="diagnose"), matches, first_seed)
     wanted = {config.match_id for config in configs}
     with tqdm(total=len(configs), desc="watched matches", unit="match") as bar:
-        from sim.match_batch import finished_ids
-
         bar.update(len(wanted & finished_ids(out / CHECKPOINT_NAME)))
         rows = run_batch(configs, agents_of, out / CHECKPOINT_NAME, workers, on_result=lambda _: bar.update(1),
                          run=diagnose_one)
