@@ -83,8 +83,8 @@ def orbit_figures(run: Run, case: Case) -> dict[str, float]:
     if case.motion is None or not case.motion.startswith("orbit_") or first_fall(run.truths) is not None:
         return {}
     walked = [t for t in run.truths[:case.walk_cycles] if t is not None]
-    circle = circle_fit([t.torso_m[:2] for t in walked])
-    if not walked or circle is None:
+    circle = circle_fit([t.torso_m[:2] for t in walked])   # None for fewer than three poses
+    if circle is None:
         return {}
     (cx, cy), radius = circle
     ahead, left = pose_of(walked[0]).to_ego(cx, cy)

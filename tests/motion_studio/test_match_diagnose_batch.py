@@ -2,12 +2,11 @@
 
 from __future__ import annotations
 
-import json
-
 import pytest
 
 from motion_studio.match_diagnose import main
 from motion_studio.match_diagnose_batch import CHECKPOINT_NAME, PLOT_NAME, aggregate, report
+from sim.match_batch import read_results
 
 
 def _row(seed: int, score: tuple[int, int], falls: int, push_s: float, turn_s: float) -> dict:
@@ -38,7 +37,7 @@ def test_watched_matches_are_checkpointed_and_a_rerun_plays_only_the_missing_see
     args = ["--players", "2", "--duration", "10", "--right", "standing", "--matches", "2", "--out", str(tmp_path)]
     assert main(args) == 0
     checkpoint = tmp_path / CHECKPOINT_NAME
-    rows = [json.loads(line) for line in checkpoint.read_text().splitlines()]
+    rows = read_results(checkpoint)
     assert sorted(row["seed"] for row in rows) == [0, 1]
     assert all(row["on_ball_s"]["left"] and not row["on_ball_s"]["right"] for row in rows)
     assert (tmp_path / PLOT_NAME).stat().st_size > 10_000
@@ -46,13 +45,7 @@ def test_watched_matches_are_checkpointed_and_a_rerun_plays_only_the_missing_see
     # a crash mid-write leaves a torn line; the rerun keeps the finished seeds and plays seed 2 only
     checkpoint.write_text(checkpoint.read_text() + '{"match_id": "diagnose-2", "se')
     assert main(args[:-3] + ["3", "--out", str(tmp_path)]) == 0
-    seeds = []
-    for line in checkpoint.read_text().splitlines():
-        try:
-            seeds.append(json.loads(line)["seed"])
-        except json.JSONDecodeError:
-            continue
-    assert sorted(seeds) == [0, 1, 2]
+    assert sorted(row["seed"] for row in read_results(checkpoint)) == [0, 1, 2]   # the torn line skipped
     assert "3 matches" in capsys.readouterr().out
 
 
