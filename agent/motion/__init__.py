@@ -5,12 +5,12 @@ once per cycle; see :mod:`agent.motion.controller`.
 """
 
 from agent.motion.controller import ControllerConfig, MotionController, MotionEvent, MotionRequest
-from agent.motion.dynamic import (DEFAULT_PARAMS_PATH, DynamicParams, Slowdown, TurnGain, WalkLean,
-                                  load_dynamic_params, save_dynamic_params)
+from agent.motion.dynamic import (DEFAULT_PARAMS_PATH, DynamicParams, Slowdown, TurnGain, WalkBalance,
+                                  WalkLean, load_dynamic_params, save_dynamic_params)
 from agent.motion.library import DEFAULT_MOTION_DIR, MotionLibrary, WebotsTiming, default_library
 
 __all__ = [
     "ControllerConfig", "DEFAULT_MOTION_DIR", "DEFAULT_PARAMS_PATH", "DynamicParams", "MotionController",
-    "MotionEvent", "MotionLibrary", "MotionRequest", "Slowdown", "TurnGain", "WalkLean", "WebotsTiming",
-    "default_library", "load_dynamic_params", "save_dynamic_params",
+    "MotionEvent", "MotionLibrary", "MotionRequest", "Slowdown", "TurnGain", "WalkBalance", "WalkLean",
+    "WebotsTiming", "default_library", "load_dynamic_params", "save_dynamic_params",
 ]

@@ -177,6 +177,7 @@ class MotionController:
         self._last_command: dict[str, float] = {j.perceptor: 0.0 for j in self.joints}
         self._last_time_s: float | None = None
         self._sent_phase: str | None = None
+        self._gyro_deg_s: tuple[float, float, float] | None = None
         self.time_s = 0.0
 
     # ---- state --------------------------------------------------------------------------------------
@@ -220,13 +221,16 @@ class MotionController:
             self._finish(self._playback, completed=False)
 
     # ---- the cycle ----------------------------------------------------------------------------------
-    def update(self, joint_angles_deg: Mapping[str, float], time_s: float | None = None) -> dict[str, float]:
+    def update(self, joint_angles_deg: Mapping[str, float], time_s: float | None = None,
+               gyro_deg_s: tuple[float, float, float] | None = None) -> dict[str, float]:
         """One cycle: measured joint angles in, joint velocities out.
 
         Args:
             joint_angles_deg: wire name (``llj3``) -> measured angle [deg] (the HJ perceptors).
             time_s: server time of the sense message [s]; if cycles were missed, the motion time and the
                 delay compensation follow the real gap. None = one cycle after the last call.
+            gyro_deg_s: the torso's angular rate (GYR perceptor, x/y/z) [deg/s] for the walk balance;
+                None = no feedback this cycle.
 
         Returns:
             effector name (``lle3``) -> target angular velocity [rad/s], clamped to the joint's max speed.
@@ -239,6 +243,7 @@ class MotionController:
         if time_s is not None:
             self._last_time_s = time_s
         self.time_s += elapsed
+        self._gyro_deg_s = gyro_deg_s
         current = self._predicted_angles(joint_angles_deg, elapsed)
         self._advance_motion(current)
         velocities = self._joint_velocities(current)
@@ -435,9 +440,13 @@ class MotionController:
         self._sent_phase = keyframe.name
         remaining_s = (keyframe.cycles - playback.cycles_done) * CYCLE_S
         playback.cycles_done += 1
+        balance = self._balance_offsets(playback)
         velocities: dict[str, float | None] = {}
         for wire, angle in current.items():
             target = keyframe.targets.get(wire)
+            if target is not None and wire in balance:
+                low, high = self._bounds[wire]
+                target = min(max(target + balance[wire], low), high)
             if target is None:
                 if wire in keyframe.targets or not keyframe.hold_unlisted:
                     velocities[wire] = None  # Webots '*': not commanded
@@ -449,6 +458,19 @@ class MotionController:
             # Decided now, so that the behaviour sees the end in the cycle after the last command.
             self._next_keyframe_if_done(playback, current)
         return velocities
+
+    def _balance_offsets(self, playback: _Playback) -> dict[str, float]:
+        """Wire name -> the walk balance's target offset this cycle [rad] (empty outside the walks)."""
+        balance = self.dynamic.walk_balance
+        gyro = self._gyro_deg_s
+        if gyro is None or not balance.applies(playback.name, "speed_m_s" in playback.motion.constants):
+            return {}
+        offsets = {}
+        for wire, effector in self._effector.items():
+            offset = balance.offset_deg(effector[1:], gyro)
+            if offset:
+                offsets[wire] = math.radians(offset)
+        return offsets
 
     def _next_keyframe_if_done(self, playback: _Playback, current: Mapping[str, float]) -> None:
         """A non-cyclic motion whose last keyframe has just been commanded ends now (not a cycle later)."""

@@ -12,7 +12,10 @@ Each element is a parametrised curve whose numbers live in a TOML file (default
 * **turn gain**: a requested turn [deg] -> gain in [min_gain, 1] that scales a turn motion, and back
   (the turn one motion makes at a gain), for dead reckoning and the turn benchmark's prediction error;
 * **kick distance**: a requested ball distance [m] -> a stretch factor (>= 1) of a kick's strike phases: a
-  slower swing sends the ball a shorter way (the distance-controlled kick, measured on the real server).
+  slower swing sends the ball a shorter way (the distance-controlled kick, measured on the real server);
+* **walk balance**: gyro feedback in the walks: ``offset = gain_deg_per_deg_s[kind] * rate`` added to the
+  targets of both legs' joints of that kind, ``rate`` the torso's measured angular rate [deg/s] about its x
+  axis (pitch kinds) or y axis (roll kinds); the walks are otherwise open loop.
 """
 
 from __future__ import annotations
@@ -231,6 +234,48 @@ class KickDistance:
 
 
 @dataclass(frozen=True)
+class WalkBalance:
+    """Walk balance: gyro feedback on the leg joints of the walks (see the module docstring).
+
+    Why: the walks are played open loop, so a gait fast enough for the real server falls on ours (and the
+    other way round) wherever the two servers' feet land differently; a joint offset against the torso's
+    angular rate moves the centre of pressure against the tipping before it becomes a fall.
+    """
+
+    pitch_gains_deg_per_deg_s: Mapping[str, float] = field(default_factory=dict)
+    """Joint kind (``le5``, ``le3``, ...) -> target offset [deg] per torso rate about x (pitch) [deg/s]."""
+    roll_gains_deg_per_deg_s: Mapping[str, float] = field(default_factory=dict)
+    """Joint kind (``le6``, ``le2``, ...) -> target offset [deg] per torso rate about y (roll) [deg/s]."""
+    motions: tuple[str, ...] = ()
+    """The walks it applies to; empty: every motion with a ``speed_m_s`` constant."""
+    max_offset_deg: float = 10.0
+    """Bound of each joint's offset [deg]: a blow-up of the rate must not throw the legs."""
+    provenance: str = ""
+
+    def __post_init__(self) -> None:
+        for name, gains in (("pitch", self.pitch_gains_deg_per_deg_s), ("roll", self.roll_gains_deg_per_deg_s)):
+            for kind, gain in gains.items():
+                if not math.isfinite(gain):
+                    raise ValueError(f"walk_balance {name} gain of {kind} must be finite, got {gain!r}")
+        if not (self.max_offset_deg >= 0.0 and math.isfinite(self.max_offset_deg)):
+            raise ValueError(f"walk_balance max_offset_deg must be >= 0, got {self.max_offset_deg!r}")
+
+    @property
+    def active(self) -> bool:
+        return bool(self.pitch_gains_deg_per_deg_s or self.roll_gains_deg_per_deg_s)
+
+    def applies(self, motion: str, is_walk: bool) -> bool:
+        return self.active and (motion in self.motions if self.motions else is_walk)
+
+    def offset_deg(self, kind: str, gyro_deg_s: tuple[float, float, float]) -> float:
+        """Offset [deg] of a joint of ``kind`` (effector name without its side letter) for the torso rates
+        ``gyro_deg_s`` (x, y, z) [deg/s]."""
+        offset = (self.pitch_gains_deg_per_deg_s.get(kind, 0.0) * gyro_deg_s[0]
+                  + self.roll_gains_deg_per_deg_s.get(kind, 0.0) * gyro_deg_s[1])
+        return max(-self.max_offset_deg, min(self.max_offset_deg, offset))
+
+
+@dataclass(frozen=True)
 class DynamicParams:
     """All dynamic elements; ``source`` is the file they were read from (None: defaults)."""
 
@@ -238,6 +283,7 @@ class DynamicParams:
     slowdown: Slowdown = field(default_factory=Slowdown)
     turn_gain: TurnGain = field(default_factory=TurnGain)
     kick_distance: KickDistance = field(default_factory=KickDistance)
+    walk_balance: WalkBalance = field(default_factory=WalkBalance)
     source: str | None = None
 
 
@@ -266,7 +312,8 @@ def load_dynamic_params(path: str | Path | None = None) -> DynamicParams:
         data = tomllib.loads(path.read_text(encoding="utf-8"))
     except tomllib.TOMLDecodeError as error:
         raise ValueError(f"{path}: {error}") from None
-    sections = {"walk_lean": WalkLean, "slowdown": Slowdown, "turn_gain": TurnGain, "kick_distance": KickDistance}
+    sections = {"walk_lean": WalkLean, "slowdown": Slowdown, "turn_gain": TurnGain, "kick_distance": KickDistance,
+                "walk_balance": WalkBalance}
     unknown = set(data) - set(sections)
     if unknown:
         raise ValueError(f"{path}: unknown sections {sorted(unknown)}; known: {sorted(sections)}")
@@ -277,7 +324,7 @@ def load_dynamic_params(path: str | Path | None = None) -> DynamicParams:
 def dumps_dynamic_params(params: DynamicParams, header: str) -> str:
     """TOML text of ``params`` with ``header`` (lines written as ``#`` comments) on top."""
     lines = [f"# {line}".rstrip() for line in header.splitlines()]
-    for name in ("walk_lean", "slowdown", "turn_gain", "kick_distance"):
+    for name in ("walk_lean", "slowdown", "turn_gain", "kick_distance", "walk_balance"):
         section = getattr(params, name)
         lines += ["", f"[{name}]"]
         lines += [f"{f.name} = {toml_value(getattr(section, f.name))}" for f in fields(section)]

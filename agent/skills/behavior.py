@@ -71,5 +71,5 @@ class SkillBehavior:
             self.on_cycle(world, request)
         self.motion.request(request)
         angles_deg = {name: math.degrees(value) for name, value in world.body.joints_rad.items()}
-        velocities = self.motion.update(angles_deg, world.now_s)
+        velocities = self.motion.update(angles_deg, world.now_s, world.body.gyro_deg_s)
         return [JointVelocity(effector, value) for effector, value in velocities.items()]

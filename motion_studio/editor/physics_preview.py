@@ -154,7 +154,7 @@ class ControllerPlayer:
         playing = self.time_s <= self.motion.duration_s + 1e-9 and self.controller.completed[self.motion.name] == 0
         self.controller.request(MotionRequest(self.motion.name if playing else None))
         angles_deg = {name: math.degrees(value) for name, value in world.body.joints_rad.items()}
-        velocities = self.controller.update(angles_deg, world.now_s)
+        velocities = self.controller.update(angles_deg, world.now_s, world.body.gyro_deg_s)
         return [JointVelocity(effector, value) for effector, value in velocities.items()]
 
 
