@@ -101,6 +101,17 @@ sessions), benchmarks/bench_sim.py.
   real feet still resist more, most likely by staying in contact where ours lift (the real foot rests deeper).
   ``sim/physics_candidates/foot_slip.toml`` has the figures; ``foot_slip_layer_m`` (a corner holds up to that
   height above the field) measured worse at 1 mm.
+* **Body parts slip (2026-11-29, issue 12; ``body_slip_m_s_per_n``, not the default).** SimSpark's body parts have
+  the feet's contact (rsg/agent/nao/contactjointhandler.rsg: mu = inf, slip 5e-3 m/s per N). The feet's corner
+  dampers on the torso, arm, thigh and shank boxes (the head sphere and the neck keep ``body_friction``) make ours
+  behave as the real robot in one respect the Coulomb 0.95 below does not: the back stand-up after scripted falls
+  reaches its knees_in phase alike from every fall. The real torso's forward axis is then at z -0.20 / -0.21 in all
+  of 10 falls; ours -0.12 to -0.62 with Coulomb (the falls at -0.59 / -0.62 tip forward later), -0.27 to -0.36 with
+  slip 0.02 (9 of 10 stand at once). SimSpark's own 5e-3 (up to 0.015) slides too little: ours falls back in every
+  start; why the fit is 4 x the nominal slip (ODE's contact count, its soft normal rows) is not found.
+  ``sim/physics_candidates/body_slip.toml`` has the figures: the same outcome as the real robot in 46 of 69
+  replays (defaults 44), scripted back falls 19 of 20 within 3 s (defaults 17, real 20), and what keeps it from
+  being the default: robot types 1 and 4 lying on a side never stand (defaults 8 and 10 of 10, real 9 and 10).
 * **Ball contacts, fitted on the real kick and the real roll (2026-11-26).** SimSpark's ball contacts have
   μ = ∞ with force-dependent slip 0.3 m/s per N (the ball's 0.6 averaged with 5e-3), so the tangential force
   a ball contact can carry grows with the slip, not with the normal force. Two consequences MuJoCo's Coulomb
@@ -374,6 +385,10 @@ class PhysicsParams:
     damper of 1 / slip N·s/m, solved implicitly with the step, and the foot's MuJoCo contact with the field carries
     the normal force alone. None = MuJoCo's Coulomb friction (``friction``), the default: see "Feet slip as ODE's" in
     the docstring for why."""
+    body_slip_m_s_per_n: float | None = None
+    """Force-dependent slip of the robot's other box bodies (torso, arms, thighs, shanks) on the field [m/s per N],
+    with the same corner dampers as ``foot_slip_m_s_per_n`` (SimSpark: 5e-3 on every robot contact); None = their
+    Coulomb friction (``body_friction``), the default: see "Body parts slip" in the docstring."""
     foot_slip_layer_m: float = 0.0
     """A foot corner holds (``foot_slip_m_s_per_n``) while it is lower than this above the field [m]; 0 = ODE's
     contact points, the corners below the field (1 mm measured worse, see "Feet slip as ODE's")."""

@@ -136,14 +136,27 @@ _SLIP_CORNER = "slip_corner"
 _SLIP_REFERENCE = "slip_reference"
 
 
-def _add_foot_slip_dampers(template: mujoco.MjSpec, feet: list[str]) -> None:
-    """Tangential dampers at the 8 corners of each foot box (see ``PhysicsParams.foot_slip_m_s_per_n``; all 8, so a
-    foot lying on its side or upside down holds too): a velocity actuator per corner and world axis x, y (measured
-    against a world-fixed reference site, so the axes stay horizontal however the foot turns), switched by
-    `World._hold_feet_below_the_surface`. MuJoCo's ``discrete`` step takes an actuator's velocity derivative into
+def _slip_bodies(spec: RobotSpec, template: mujoco.MjSpec, p: PhysicsParams) -> dict[str, float]:
+    """Body (= geom) name -> slip [m/s per N] of the robot boxes held by slip dampers instead of friction."""
+    out: dict[str, float] = {}
+    feet = _foot_bodies(spec)
+    if p.foot_slip_m_s_per_n:
+        out.update({name: p.foot_slip_m_s_per_n for name in feet})
+    if p.body_slip_m_s_per_n:
+        out.update({g.name: p.body_slip_m_s_per_n for g in template.geoms
+                    if g.contype and g.type == mujoco.mjtGeom.mjGEOM_BOX and g.name not in feet})
+    return out
+
+
+def _add_slip_dampers(template: mujoco.MjSpec, boxes: list[str]) -> None:
+    """Tangential dampers at the 8 corners of each slipping box (the feet, ``PhysicsParams.foot_slip_m_s_per_n``;
+    the other boxes, ``body_slip_m_s_per_n``; all 8, so a box lying on its side or upside down holds too): a
+    velocity actuator per corner and world axis x, y (measured against a world-fixed reference site, so the axes
+    stay horizontal however the box turns), switched by
+    `World._hold_corners_below_the_surface`. MuJoCo's ``discrete`` step takes an actuator's velocity derivative into
     its implicit update, so the 200 N·s/m of a corner is stable at one 20 ms step on a 0.2 kg foot."""
     template.worldbody.add_site(name=_SLIP_REFERENCE, pos=[0.0, 0.0, 0.0], group=5)
-    for name in feet:
+    for name in boxes:
         geom = template.geom(name)
         half = np.asarray(geom.size, dtype=float)
         rotation = np.zeros(9)
@@ -197,6 +210,7 @@ class World:
         self._team_version = 0   # counts team changes (see `robots`)
         self._team_rows: tuple[object, ...] = (None,)
         self._slip_corners = np.zeros(0, dtype=np.intp)
+        self._slip_on_foot = np.zeros(0, dtype=bool)   # which slipping corners are on a foot (their FRP adds them)
         self._reindex()
         mujoco.mj_forward(self.model, self.data)
 
@@ -266,8 +280,8 @@ class World:
         child = self._robot_template(robot_type).copy()
         frame = self.spec.worldbody.add_frame(name=f"{robot.prefix}frame")
         self.spec.attach(child, prefix=robot.prefix, frame=frame)
-        if self.params.foot_slip_m_s_per_n:
-            self._add_frictionless_foot_pairs(robot)
+        if self.params.foot_slip_m_s_per_n or self.params.body_slip_m_s_per_n:
+            self._add_frictionless_slip_pairs(robot)
         self.by_key[key] = robot
         self.motors.add_robot(key, spec.joints)
         self._recompile()
@@ -304,8 +318,8 @@ class World:
                         quat=list(geom.quat), contype=0, conaffinity=_BALL_BIT, condim=geom.condim, mass=0.0,
                         friction=list(geom.friction), solref=list(geom.solref), solimp=list(geom.solimp),
                         group=3)
-        if p.foot_slip_m_s_per_n:
-            _add_foot_slip_dampers(template, feet)
+        if p.foot_slip_m_s_per_n or p.body_slip_m_s_per_n:
+            _add_slip_dampers(template, sorted(_slip_bodies(spec, template, p)))
         for sensor in spec.sensors:
             if sensor.kind == "force":
                 # MuJoCo sums the foot's contacts in C: net force and force-weighted centroid (world frame).
@@ -315,10 +329,11 @@ class World:
         self._templates[robot_type] = template
         return template
 
-    def _add_frictionless_foot_pairs(self, robot: Robot) -> None:
-        """Each foot meets the field through an explicit pair without friction (the slip dampers carry it)."""
+    def _add_frictionless_slip_pairs(self, robot: Robot) -> None:
+        """Each slipping box (`_slip_bodies`) meets the field through an explicit pair without friction (the slip
+        dampers carry it)."""
         p = self.params
-        for body in _foot_bodies(robot.spec):
+        for body in _slip_bodies(robot.spec, self._robot_template(robot.robot_type), p):
             pair = self.spec.add_pair(name=f"{robot.prefix}slip_{body}", geomname1=robot.prefix + body,
                                       geomname2="field")
             pair.condim = 1
@@ -400,15 +415,19 @@ class World:
             m.dof_damping[robot.root_dof + 3:robot.root_dof + 6] = n_bodies * p.body_angular_drag_nm_s
             self._apply_collision_bits(robot)
         self.motors.bind_model(m)
-        if p.foot_slip_m_s_per_n:
+        if p.foot_slip_m_s_per_n or p.body_slip_m_s_per_n:
             corners = [m.site(n).id for n in (m.site(i).name for i in range(m.nsite)) if _SLIP_CORNER in n]
             self._slip_corners = np.array(corners, dtype=np.intp)
             self._slip_actuators = np.array([[m.actuator(m.site(c).name + axis).id for axis in "xy"]
                                              for c in corners], dtype=np.intp).reshape(-1, 2)
-            self._slip_damping = np.array(-1.0 / p.foot_slip_m_s_per_n)
-            self._slip_layer = np.array(p.foot_slip_layer_m)
             slot_of_body = {body: slot for slot, body in enumerate(sensor_bodies)}
-            self._slip_slots = np.array([slot_of_body[int(m.site_bodyid[c])] for c in corners], dtype=np.intp)
+            on_foot = np.array([int(m.site_bodyid[c]) in slot_of_body for c in corners], dtype=bool)
+            slips = np.where(on_foot, p.foot_slip_m_s_per_n or 0.0, p.body_slip_m_s_per_n or 0.0)
+            self._slip_damping = -1.0 / slips
+            self._slip_layer = np.array(p.foot_slip_layer_m)
+            self._slip_on_foot = on_foot
+            # foot corners add their force to their FRP slot; the other boxes have no sensor (slot 0, masked)
+            self._slip_slots = np.array([slot_of_body.get(int(m.site_bodyid[c]), 0) for c in corners], dtype=np.intp)
         if self.joint_slack is not None:
             # The legs only: they meet the ball (a body's drift depends on its own motion against the torso alone,
             # so the others need not be followed; the monitor shows them where their joints put them).
@@ -598,7 +617,7 @@ class World:
         m, d, motors = self.model, self.data, self.motors
         if self._swing_twins.size:
             self._swing_feet_meet_the_field()
-        slip_start = self._hold_feet_below_the_surface() if self._slip_corners.size else None
+        slip_start = self._hold_corners_below_the_surface() if self._slip_corners.size else None
         cycle_start = _save_state(d)
         for substep in range(self.params.substeps):
             # The first substep starts from the cycle's start; predict writes no saved field, so one copy serves
@@ -634,9 +653,10 @@ class World:
             self.joint_slack.settle(m, d)
         self._poses_stale = False
 
-    def _hold_feet_below_the_surface(self) -> tuple[np.ndarray, np.ndarray]:
-        """Switch each foot corner's slip damper on where the corner is below the field (ODE's contact points of a
-        box on a plane are its corners under the plane), off elsewhere; decided at the step's start, as ODE does.
+    def _hold_corners_below_the_surface(self) -> tuple[np.ndarray, np.ndarray]:
+        """Switch each slipping corner's damper (feet, and the other boxes with body slip) on where the corner is
+        below the field (ODE's contact points of a box on a plane are its corners under the plane), off elsewhere;
+        decided at the step's start, as ODE does.
 
         Returns:
             the corners' world positions [m] at the step's start (a copy) and which of them hold.
@@ -650,11 +670,12 @@ class World:
         """Add the slip dampers' forces to the FRP of `_foot_sensors` (SimSpark sums every contact's whole force,
         friction too, and weights the centre by each force's length). A damper's force is the one the implicit
         step applied, -v/slip with v the corner's velocity at the step's end: its displacement over the step."""
+        held = held & self._slip_on_foot
         if not np.count_nonzero(held):
             return
         velocity = (self.data.site_xpos[self._slip_corners] - start) / self._cycle
         force = np.zeros_like(start)
-        force[:, :2] = np.where(held[:, None], velocity[:, :2] * self._slip_damping, 0.0)
+        force[:, :2] = np.where(held[:, None], velocity[:, :2] * self._slip_damping[:, None], 0.0)
         weight = np.linalg.norm(force, axis=1)[:, None]
         # per foot sensor in one scatter: summed force, summed force length, length-weighted sum of positions
         sums = np.zeros((len(self.frp_force), 7))
