@@ -114,7 +114,8 @@ sessions), benchmarks/bench_sim.py.
   being the default: robot types 1 and 4 lying on a side never stand (defaults 8 and 10 of 10, real 9 and 10).
   With the feet slipping too (foot 0.015, body 0.03: ``sim/physics_candidates/slip_fit_2026-11-29.toml``) types 0,
   1, 2 and 4 stand up in the real robot's times (scripted back falls 20/20 in 2.42 s, real 2.44; type 1 on a side
-  2.86 s, real 2.94), calibrate 1.038 and 48 of 69; type 3 on a side then never stands (real 8 of 10).
+  2.86 s, real 2.94), calibrate 1.038 and 48 of 69; type 3 on a side then never stands (real 8 of 10), and our 3 v 3
+  against standing robots scores 16 goals in 16 matches instead of 27 (turns and pushes tuned on the defaults).
 * **Ball contacts, fitted on the real kick and the real roll (2026-11-26).** SimSpark's ball contacts have
   μ = ∞ with force-dependent slip 0.3 m/s per N (the ball's 0.6 averaged with 5e-3), so the tangential force
   a ball contact can carry grows with the slip, not with the normal force. Two consequences MuJoCo's Coulomb
