@@ -136,16 +136,15 @@ _SLIP_CORNER = "slip_corner"
 _SLIP_REFERENCE = "slip_reference"
 
 
-def _slip_bodies(spec: RobotSpec, template: mujoco.MjSpec, p: PhysicsParams) -> dict[str, float]:
-    """Body (= geom) name -> slip [m/s per N] of the robot boxes held by slip dampers instead of friction."""
-    out: dict[str, float] = {}
+def _slip_bodies(spec: RobotSpec, template: mujoco.MjSpec, p: PhysicsParams) -> list[str]:
+    """The robot boxes (body name = geom name) held by slip dampers instead of friction, sorted: the force-sensing
+    feet (and type 4's toes) with ``foot_slip_m_s_per_n``, every other colliding box with ``body_slip_m_s_per_n``."""
     feet = _foot_bodies(spec)
-    if p.foot_slip_m_s_per_n:
-        out.update({name: p.foot_slip_m_s_per_n for name in feet})
+    out = list(feet) if p.foot_slip_m_s_per_n else []
     if p.body_slip_m_s_per_n:
-        out.update({g.name: p.body_slip_m_s_per_n for g in template.geoms
-                    if g.contype and g.type == mujoco.mjtGeom.mjGEOM_BOX and g.name not in feet})
-    return out
+        out += [g.name for g in template.geoms
+                if g.contype and g.type == mujoco.mjtGeom.mjGEOM_BOX and g.name not in feet]
+    return sorted(out)
 
 
 def _add_slip_dampers(template: mujoco.MjSpec, boxes: list[str]) -> None:
@@ -319,7 +318,7 @@ class World:
                         friction=list(geom.friction), solref=list(geom.solref), solimp=list(geom.solimp),
                         group=3)
         if p.foot_slip_m_s_per_n or p.body_slip_m_s_per_n:
-            _add_slip_dampers(template, sorted(_slip_bodies(spec, template, p)))
+            _add_slip_dampers(template, _slip_bodies(spec, template, p))
         for sensor in spec.sensors:
             if sensor.kind == "force":
                 # MuJoCo sums the foot's contacts in C: net force and force-weighted centroid (world frame).
