@@ -401,14 +401,19 @@ class MotionController:
             targets[wire] = angle
         self._begin(playback, _Keyframe(pose.name, 0, targets, hold_unlisted=False), duration_s, current)
 
+    def _within_bounds(self, wire: str, angle_rad: float) -> float:
+        """``angle_rad`` kept ``joint_margin_deg`` inside the joint's limits (a joint at its stop ignores
+        commands, see the module docstring) [rad]."""
+        low, high = self._bounds[wire]
+        return min(max(angle_rad, low), high)
+
     def _begin(self, playback: _Playback, keyframe: _Keyframe, duration_s: float,
                current: Mapping[str, float]) -> None:
         """Start a keyframe: clip its targets, quantise its duration to cycles (carrying the rounding so
         the motion keeps its total time), stretch a first keyframe for blending."""
         for wire, angle in keyframe.targets.items():
             if angle is not None:
-                low, high = self._bounds[wire]
-                keyframe.targets[wire] = min(max(angle, low), high)
+                keyframe.targets[wire] = self._within_bounds(wire, angle)
         start = playback.time_s
         playback.time_s += duration_s
         cycles = max(1, round(playback.time_s / CYCLE_S) - round(start / CYCLE_S))
@@ -445,8 +450,7 @@ class MotionController:
         for wire, angle in current.items():
             target = keyframe.targets.get(wire)
             if target is not None and wire in balance:
-                low, high = self._bounds[wire]
-                target = min(max(target + balance[wire], low), high)
+                target = self._within_bounds(wire, target + balance[wire])
             if target is None:
                 if wire in keyframe.targets or not keyframe.hold_unlisted:
                     velocities[wire] = None  # Webots '*': not commanded
@@ -487,8 +491,7 @@ class MotionController:
         for wire, target_deg in zip(HEAD_JOINTS, head):
             if wire not in current:
                 continue
-            low, high = self._bounds[wire]
-            target = min(max(math.radians(target_deg), low), high)
+            target = self._within_bounds(wire, math.radians(target_deg))
             velocities[wire] = (target - current[wire]) / max(self.config.head_time_constant_s, CYCLE_S)
 
 
