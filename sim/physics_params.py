@@ -279,6 +279,24 @@ sessions), benchmarks/bench_sim.py.
   to the next cycle, 6.1 N·m), ODE's surface layer as margin (1 or 2 mm) nor the feet's slip candidate bring the
   lag (walking and dribbling traces ending as the real ones: 8 of 17 with the defaults, 7-9 with these).
   (`motion-studio calibrate --only skill_walk --only skill_dribble --only skill_kick_3m`.)
+  `motion-studio calibrate --only skill_walk_forward --divergence` shows it (2026-11-29): llj3 is the first joint
+  past 1 deg (1.50 s after the skill's start), -3.97 deg at 2 s, -9.29 at 3 s, one step of about 1.1 deg per left
+  landing while every other joint stays within 1.4 deg; the real torso repeats its height to 0.02 mm every gait
+  period from the third second on (0.32985 m every 10 cycles), ours creeps upright (up axis 0.97 -> 1.00) and
+  falls at 4.78 s. The same staircase, and a fall within 2-6 s, with every candidate file (foot_slip, body_slip,
+  slip_fit_2026-11-29, noslip), a softer or wider impedance (solimp 0.1-0.3 / 0.2-0.4, width 1-2 mm) and a hard
+  landing made by direct solref (-300..-1000, -50..-100) with impedance 0.95: what would give the real hip its
+  landing load is still not found. Standing, the real torso is 0.63 mm lower than ours (0.38387 / 0.38450 m):
+  ODE's contact row pushes back only beyond its 1 mm surface layer (ERP 0.6, soft CFM 1e-4: at rest 1.02 mm deep)
+  but stops a touching foot from depth 0, which MuJoCo's reference distance cannot express (a negative margin,
+  ``surface_layer_m``, moves the onset to the same depth).
+* **Force-dependent slip at SimSpark's own value on every robot box (measured 2026-11-29, not kept).** With body and
+  feet at 5e-3 m/s per N (rsg/agent/nao/contactjointhandler.rsg) the real front stand-up's open-loop replays 2 and
+  3 stand (defaults and slip_fit_2026-11-29: fall forward out of the crouch) and the real robot's lag shows: its hip
+  yaw-pitch, whose legs drag on the field, follows 5-11 deg behind its command there (ours at the defaults leads
+  the real one by up to 24 deg; at 5e-3 it lags it by up to 11), its knees 6 deg behind ours at the rise. But every
+  recorded back stand-up then falls back (`motion-studio calibrate`: the same outcome as the real robot in 36 of
+  69 skill traces; defaults 44, body 0.01 with feet 5e-3 44, slip_fit_2026-11-29 48).
 * **Drag on robots.** SimSpark applies F = -0.01 v and τ = -0.01 ω to every body. Here the whole-body part
   is free-joint damping of the torso (N_bodies x 0.01 on the linear and angular dofs), exact for a rigid
   translation; the drag of limbs swinging relative to the torso is left out (at most 0.06 N·m at full

@@ -6,11 +6,15 @@ import logging
 import shlex
 import sys
 from pathlib import Path
-from typing import Annotated
+from typing import TYPE_CHECKING, Annotated
 
 import typer
 
 from motion_studio.cli import app
+
+if TYPE_CHECKING:
+    from motion_studio.realserver.fixtures import Fixture
+    from sim.physics_params import PhysicsParams
 
 PROJECT = Path(__file__).resolve().parents[2]
 
@@ -32,6 +36,11 @@ def calibrate(
     details: Annotated[bool, typer.Option(help="print every measure of every trace (real / ours, error)")] = False,
     only: Annotated[list[str] | None, typer.Option(help="use only traces whose name contains this (repeatable); "
                                                         "'ball_roll' is the real ball-roll figure")] = None,
+    divergence: Annotated[bool, typer.Option(help="with --only: where each replay leaves its real recording (the "
+                                                  "first joints past --threshold-deg, the torso), with a plot "
+                                                  "per trace in --out")] = False,
+    threshold_deg: Annotated[float, typer.Option(min=0.01, help="--divergence: a joint has left the real one when "
+                                                              "it is this far off [deg]")] = 1.0,
 ) -> None:
     """Replay every real trace on our simulator, print the agreement per trace, and with --generations fit the
     contact parameters (friction, impratio, solimp, solref) to them; a killed fit resumes from --out."""
@@ -45,6 +54,9 @@ def calibrate(
 
     if parameters not in PARAMETER_SETS:
         typer.echo(f"error: --parameters {parameters!r}: choose from {', '.join(PARAMETER_SETS)}", err=True)
+        raise typer.Exit(2)
+    if divergence and not only:
+        typer.echo("error: --divergence needs --only NAME (one plot and table per trace)", err=True)
         raise typer.Exit(2)
     paths = [p for p in find_fixture_files(traces) if not only or any(o in p.name for o in only)]
     if not paths:
@@ -60,6 +72,9 @@ def calibrate(
         raise typer.Exit(2)
     logging.getLogger("sim").setLevel(logging.ERROR)   # blow-ups are counted in the objective
     base = default_physics_params()
+    if divergence:
+        _report_divergence(loaded, base, threshold_deg, out)
+        return
     ball_roll = not only or "ball_roll" in only
     before = evaluate(loaded, base, ball_roll=ball_roll)
     after = None
@@ -96,3 +111,19 @@ def calibrate(
             typer.echo(f"written: {CALIBRATED_FILE}")
         elif write:
             typer.echo("not written: the fit found nothing better than the current parameters")
+
+
+def _report_divergence(loaded: list[Fixture], physics: PhysicsParams, threshold_deg: float, out: Path) -> None:
+    """``--divergence``: replay each skill trace and print where it leaves the real recording, plot it."""
+    from motion_studio.calibration.agreement import Replay
+    from motion_studio.calibration.divergence import divergence, divergence_table, plot_divergence
+    from motion_studio.realserver.replay import replay_states
+
+    for trace in loaded:
+        if not trace.truth:
+            typer.echo(f"{trace.name}: a scripted trace (no real pose): skipped")
+            continue
+        replay = Replay(trace, replay_states(trace, physics))
+        found = divergence(replay, threshold_deg)
+        typer.echo(divergence_table(found))
+        typer.echo(f"plot: {plot_divergence(found, replay, out / f'divergence_{trace.name}.png')}")

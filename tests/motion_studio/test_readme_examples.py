@@ -74,6 +74,7 @@ HOW = {
     "calibrate": PARSE,
     "calibrate --generations 20 --out out/cal": PARSE,
     "calibrate --generations 20 --write": PARSE,
+    "calibrate --only skill_walk_forward --divergence": RUN,   # two replays, ~10 s
     "calibrate --parameters slip --generations 10": PARSE,   # ~25 min (100 replay sets)
 }
 #: The line a served example prints once it is up.

@@ -1,0 +1,80 @@
+"""motion-studio calibrate --divergence: where an open-loop replay leaves its real recording, joint by joint."""
+
+from __future__ import annotations
+
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from motion_studio.calibration.agreement import Replay
+from motion_studio.calibration.divergence import divergence, divergence_table
+from motion_studio.realserver.fixtures import read_fixture
+from motion_studio.realserver.replay import ReplayStates, replay_states
+
+FIXTURES = Path(__file__).parents[1] / "sim" / "fixtures"
+WALK = FIXTURES / "real_0.7.3_skill_walk_forward.jsonl.gz"
+
+
+def _as_recorded(trace, bump_deg: float = 0.0, joint: str = "llj3", from_cycle: int = 0) -> Replay:  # noqa: ANN001
+    """``trace`` against itself, with ``joint``'s HJ reading moved by ``bump_deg`` from ``from_cycle`` on."""
+    def bumped(index: int, message: bytes) -> bytes:
+        if index < from_cycle or not bump_deg:
+            return message
+        return re.sub(rb"\(HJ \(n " + joint.encode() + rb"\) \(ax (-?[0-9.]+)\)\)",
+                      lambda m: b"(HJ (n %s) (ax %.2f))" % (joint.encode(), float(m.group(1)) + bump_deg), message)
+
+    messages = [bumped(i, m) for i, m in enumerate(trace.received)]
+    return Replay(trace, ReplayStates(dict(trace.truth), messages, 0, 0))
+
+
+def test_a_replay_that_is_the_recording_never_diverges() -> None:
+    trace = read_fixture(WALK)
+    found = divergence(_as_recorded(trace))
+    assert all(j.first_cycle is None and j.max_abs_deg == 0.0 for j in found.joints)
+    pose = found.pose
+    assert (pose.position_cycle, pose.height_cycle, pose.up_cycle, pose.heading_cycle, pose.parted_cycle) == (
+        None, None, None, None, None)
+    assert len(found.cycles) == len(trace.received) - trace.skill_cycle
+
+
+def test_one_joint_off_by_more_than_the_threshold_is_named_first_at_its_cycle() -> None:
+    trace = read_fixture(WALK)
+    start = trace.skill_cycle + 30
+    found = divergence(_as_recorded(trace, bump_deg=1.5, joint="rlj4", from_cycle=start), threshold_deg=1.0)
+    first, *others = found.joints
+    assert (first.joint, first.first_cycle) == ("rlj4", start)
+    assert first.max_abs_deg == pytest.approx(1.5, abs=0.01)
+    assert all(j.first_cycle is None for j in others)
+    # under the threshold it is seen but not counted
+    found = divergence(_as_recorded(trace, bump_deg=0.5, joint="rlj4", from_cycle=start), threshold_deg=1.0)
+    assert all(j.first_cycle is None for j in found.joints)
+
+
+def test_the_real_forward_walk_replayed_here_leaves_it_at_the_left_hip_pitch() -> None:
+    """The measured drift of our open-loop walk (sim.physics_params, "Walking feet land harder"): the left hip pitch
+    is the first joint past 1 deg, about 1 deg further at every left landing, and ours falls where the real robot
+    walks on."""
+    trace = read_fixture(WALK)
+    found = divergence(Replay(trace, replay_states(trace)))
+    first = found.joints[0]
+    assert first.joint == "llj3"
+    at_3_s = first.error_deg[trace.skill_cycle + 150]
+    assert at_3_s < -5.0, at_3_s
+    assert all(abs(j.error_deg[trace.skill_cycle + 150]) < 2.0 for j in found.joints[1:])
+    assert found.pose.real_fall_cycle is None and found.pose.ours_fall_cycle is not None
+    assert "llj3" in divergence_table(found).splitlines()[3]
+
+
+def test_the_command_prints_the_table_and_writes_the_plot(tmp_path: Path) -> None:
+    run = subprocess.run([sys.executable, "-m", "motion_studio", "calibrate", "--only", "skill_walk_forward",
+                          "--divergence", "--out", str(tmp_path)], capture_output=True, text=True, timeout=300)
+    assert run.returncode == 0, run.stderr
+    assert "llj3" in run.stdout and "skill_walk_forward_simcmds" in run.stdout
+    assert (tmp_path / "divergence_skill_walk_forward.png").stat().st_size > 10_000
+    refused = subprocess.run([sys.executable, "-m", "motion_studio", "calibrate", "--divergence"],
+                             capture_output=True, text=True, timeout=120)
+    assert refused.returncode == 2
+    assert refused.stderr.strip().count("\n") == 0 and "--only" in refused.stderr
