@@ -292,9 +292,10 @@ sessions), benchmarks/bench_sim.py.
   ``surface_layer_m``, moves the onset to the same depth).
 * **Force-dependent slip at SimSpark's own value on every robot box (measured 2026-11-29, not kept).** With body and
   feet at 5e-3 m/s per N (rsg/agent/nao/contactjointhandler.rsg) the real front stand-up's open-loop replays 2 and
-  3 stand (defaults and slip_fit_2026-11-29: fall forward out of the crouch) and the real robot's lag shows: its hip
-  yaw-pitch, whose legs drag on the field, follows 5-11 deg behind its command there (ours at the defaults leads
-  the real one by up to 24 deg; at 5e-3 it lags it by up to 11), its knees 6 deg behind ours at the rise. But every
+  3 stand (defaults and slip_fit_2026-11-29: fall forward out of the crouch) and ours' loaded joints lag as the real
+  ones do: in start 2 the hip yaw-pitch, whose legs drag on the field, leads the real joint by up to 24 deg at the
+  defaults and trails it by 5-11 deg at 5e-3; the knees end the rise 14 deg ahead of the real ones at the
+  defaults, 6 deg at 5e-3. But every
   recorded back stand-up then falls back (`motion-studio calibrate`: the same outcome as the real robot in 36 of
   69 skill traces; defaults 44, body 0.01 with feet 5e-3 44, slip_fit_2026-11-29 48).
 * **Drag on robots.** SimSpark applies F = -0.01 v and τ = -0.01 ω to every body. Here the whole-body part
