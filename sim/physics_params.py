@@ -283,10 +283,13 @@ sessions), benchmarks/bench_sim.py.
   past 1 deg (1.50 s after the skill's start), -3.97 deg at 2 s, -9.29 at 3 s, one step of about 1.1 deg per left
   landing while every other joint stays within 1.4 deg; the real torso repeats its height to 0.02 mm every gait
   period from the third second on (0.32985 m every 10 cycles), ours creeps upright (up axis 0.97 -> 1.00) and
-  falls at 4.78 s. The same staircase, and a fall within 2-6 s, with every candidate file (foot_slip, body_slip,
-  slip_fit_2026-11-29, noslip), a softer or wider impedance (solimp 0.1-0.3 / 0.2-0.4, width 1-2 mm) and a hard
-  landing made by direct solref (-300..-1000, -50..-100) with impedance 0.95: what would give the real hip its
-  landing load is still not found. Standing, the real torso is 0.63 mm lower than ours (0.38387 / 0.38450 m):
+  falls at 4.78 s. Each step is the landing: commanded -3.835 rad/s (-4.39 deg a cycle), the real hip moves
+  -2.93 deg, ours -4.03, the left foot's first FRP 127.5 N against our 81.2 (messages 120 -> 121), and five cycles
+  before, where the real foot has left the ground (-0.3 N), ours still carries 9.2 N. The same staircase, and a fall
+  within 2-7 s, with every candidate file (foot_slip, body_slip, slip_fit_2026-11-29, noslip), a softer, harder or
+  wider impedance (solimp 0.1-0.5 / 0.2-0.6, width 1-2 mm; from 0.7 / 0.8 on the right knee leaves first), motor
+  bounds of 7-9 N·m for every joint (the staircase comes sooner) and a hard landing made by direct solref
+  (-300..-1000, -50..-100) with impedance 0.95: what gives the real hip its landing load is still not found. Standing, the real torso is 0.63 mm lower than ours (0.38387 / 0.38450 m):
   ODE's contact row pushes back only beyond its 1 mm surface layer (ERP 0.6, soft CFM 1e-4: at rest 1.02 mm deep)
   but stops a touching foot from depth 0, which MuJoCo's reference distance cannot express (a negative margin,
   ``surface_layer_m``, moves the onset to the same depth).
