@@ -289,7 +289,9 @@ sessions), benchmarks/bench_sim.py.
   within 2-7 s, with every candidate file (foot_slip, body_slip, slip_fit_2026-11-29, noslip), a softer, harder or
   wider impedance (solimp 0.1-0.5 / 0.2-0.6, width 1-2 mm; from 0.7 / 0.8 on the right knee leaves first), motor
   bounds of 7-9 N·m for every joint (the staircase comes sooner) and a hard landing made by direct solref
-  (-300..-1000, -50..-100) with impedance 0.95: what gives the real hip its landing load is still not found. Standing, the real torso is 0.63 mm lower than ours (0.38387 / 0.38450 m):
+  (-300..-1000, -50..-100) with impedance 0.95, or ODE's 1 mm layer with a stiff impedance (surface_layer_m 0.001,
+  solimp 0.5-0.9: the standing torso at 0.38383-0.38398 m, as the real one, but from 0.7 on the walk hops 3 cm):
+  what gives the real hip its landing load is still not found. Standing, the real torso is 0.63 mm lower than ours (0.38387 / 0.38450 m):
   ODE's contact row pushes back only beyond its 1 mm surface layer (ERP 0.6, soft CFM 1e-4: at rest 1.02 mm deep)
   but stops a touching foot from depth 0, which MuJoCo's reference distance cannot express (a negative margin,
   ``surface_layer_m``, moves the onset to the same depth).
