@@ -291,7 +291,10 @@ sessions), benchmarks/bench_sim.py.
   bounds of 7-9 N·m for every joint (the staircase comes sooner) and a hard landing made by direct solref
   (-300..-1000, -50..-100) with impedance 0.95, or ODE's 1 mm layer with a stiff impedance (surface_layer_m 0.001,
   solimp 0.5-0.9: the standing torso at 0.38383-0.38398 m, as the real one, but from 0.7 on the walk hops 3 cm):
-  what gives the real hip its landing load is still not found. Standing, the real torso is 0.63 mm lower than ours (0.38387 / 0.38450 m):
+  ODE's row itself as two normal-only MuJoCo pairs per slipping foot (a damper of 1 / h from depth 0 and a spring
+  of ERP / h² = 1000 /s² past the 1 mm layer, impedance 0.9975 = ODE's CFM / h, feet slipping at 5e-3) stands at
+  0.38402 m but bounces: a stance foot reads 0 N every other cycle where the real one carries 20-60 N, and the walk
+  falls at 2-4 s. What gives the real hip its landing load is still not found. Standing, the real torso is 0.63 mm lower than ours (0.38387 / 0.38450 m):
   ODE's contact row pushes back only beyond its 1 mm surface layer (ERP 0.6, soft CFM 1e-4: at rest 1.02 mm deep)
   but stops a touching foot from depth 0, which MuJoCo's reference distance cannot express (a negative margin,
   ``surface_layer_m``, moves the onset to the same depth).
