@@ -1,10 +1,12 @@
-"""Where an open-loop replay leaves the real recording: the first cycle each joint and the torso part ways.
+"""Where an open-loop replay leaves the real recording: the first cycle each joint, each foot's ground contact and
+the torso part ways.
 
 Why: `agreement` says how far a replay ended from the real run, not where it started to differ. An open-loop
 replay of a closed-loop skill replays the real agent's corrections of the real robot's errors, so one joint that
 follows its command differently (a motor that saturates under load on one server only) drifts a little at every
 step and the rest follows. The first joint past a small threshold, and how fast its error grows, point at the
-physics to look at; the torso's pose says when the drift became a different motion.
+physics to look at; a foot that touches the ground on one server only (its FRP) says where the contact differs,
+often before any joint does; the torso's pose says when the drift became a different motion.
 
 Angles are the HJ perceptors' [deg] (SimSpark signs); cycles are sense-message indices of the trace.
 """
@@ -31,6 +33,9 @@ HEIGHT_THRESHOLD_M = 0.01
 UP_Z_THRESHOLD = 0.05
 #: ... or its heading this far [deg].
 HEADING_THRESHOLD_DEG = 5.0
+#: A foot touches the ground in a cycle when its FRP reports more than this normal force [N] (a lifting real foot
+#: still inside ODE's surface layer reads about 0 N).
+TOUCH_FORCE_N = 1.0
 
 
 @dataclass(frozen=True)
@@ -63,6 +68,21 @@ class PoseDivergence:
 
 
 @dataclass(frozen=True)
+class ContactDivergence:
+    """One foot-pressure sensor (``lf``, ``rf``; type 4's toes too): the cycles on which one robot's foot touches
+    the ground and the other's does not (`TOUCH_FORCE_N`), and the normal forces [N] on both sides."""
+
+    sensor: str
+    differing_cycles: list[int]
+    real_force_n: dict[int, float]
+    ours_force_n: dict[int, float]
+
+    @property
+    def first_cycle(self) -> int | None:
+        return self.differing_cycles[0] if self.differing_cycles else None
+
+
+@dataclass(frozen=True)
 class Divergence:
     """A replay's divergence from its real recording, over the cycles from the skill's start until one robot is
     fallen and the other not (open loop, what follows says nothing more; both falling, as a stand-up trace's
@@ -74,6 +94,8 @@ class Divergence:
     joints: list[JointDivergence]
     """Every joint both sides report, earliest divergence first (never-diverging joints last, by name)."""
     pose: PoseDivergence
+    contacts: list[ContactDivergence]
+    """Every foot sensor either side reports, earliest difference first."""
 
     def seconds_after_skill(self, cycle: int | None) -> str:
         """``cycle`` as seconds after the skill's start, for tables ("-" for None)."""
@@ -102,10 +124,16 @@ def divergence(replay: Replay, threshold_deg: float = JOINT_THRESHOLD_DEG) -> Di
                    and fallen(real_truth[i]) != fallen(ours_truth[i])), None)
     cycles = [i for i in shared if parted is None or i <= parted]
     errors: dict[str, dict[int, float]] = {}
+    real_force: dict[str, dict[int, float]] = {}
+    ours_force: dict[str, dict[int, float]] = {}
     for i in cycles:
-        real, ours = replay.sense("real", i).joints, replay.sense("ours", i).joints
+        real_sense, ours_sense = replay.sense("real", i), replay.sense("ours", i)
+        real, ours = real_sense.joints, ours_sense.joints
         for joint in real.keys() & ours.keys():
             errors.setdefault(joint, {})[i] = ours[joint] - real[joint]
+        for side, sense in ((real_force, real_sense), (ours_force, ours_sense)):
+            for name, contact in sense.frp.items():
+                side.setdefault(name, {})[i] = contact.force_n[2]
     joints = [JointDivergence(name, next((i for i, e in found.items() if abs(e) > threshold_deg), None), found)
               for name, found in errors.items()]
     joints.sort(key=lambda j: (j.first_cycle is None, j.first_cycle or 0, j.joint))
@@ -123,7 +151,14 @@ def divergence(replay: Replay, threshold_deg: float = JOINT_THRESHOLD_DEG) -> Di
         _first(posed, lambda i: abs(wrap_deg(ours_truth[i].heading_deg - real_truth[i].heading_deg))
                > HEADING_THRESHOLD_DEG),
         real_fall, ours_fall, parted)
-    return Divergence(fixture.name, start, cycles, joints, pose)
+    contacts = []
+    for sensor in sorted(real_force.keys() | ours_force.keys()):
+        real_n, ours_n = real_force.get(sensor, {}), ours_force.get(sensor, {})
+        differing = [i for i in cycles
+                     if (real_n.get(i, 0.0) > TOUCH_FORCE_N) != (ours_n.get(i, 0.0) > TOUCH_FORCE_N)]
+        contacts.append(ContactDivergence(sensor, differing, real_n, ours_n))
+    contacts.sort(key=lambda c: (c.first_cycle is None, c.first_cycle or 0, c.sensor))
+    return Divergence(fixture.name, start, cycles, joints, pose, contacts)
 
 
 def divergence_table(found: Divergence, rows: int = 8) -> str:
@@ -135,6 +170,10 @@ def divergence_table(found: Divergence, rows: int = 8) -> str:
              f"torso past its threshold [s after the skill's start]: position {s(pose.position_cycle)}, height "
              f"{s(pose.height_cycle)}, up axis {s(pose.up_cycle)}, heading {s(pose.heading_cycle)}; fell: real "
              f"{s(pose.real_fall_cycle)}, ours {s(pose.ours_fall_cycle)}; one fallen, the other not: {s(pose.parted_cycle)}",
+             "feet touching on one side only (FRP above 1 N): " + (", ".join(
+                 f"{c.sensor} first at {s(c.first_cycle)} s ({c.real_force_n.get(c.first_cycle, 0.0):.1f} N real, "
+                 f"{c.ours_force_n.get(c.first_cycle, 0.0):.1f} N ours), {len(c.differing_cycles)} of "
+                 f"{len(found.cycles)} cycles" for c in found.contacts if c.first_cycle is not None) or "never"),
              f"{'joint':6s} {'past [s]':>9s} {'at 1 s':>8s} {'at 2 s':>8s} {'at 3 s':>8s} {'max':>8s}  (ours - real, deg)"]
     for joint in found.joints[:rows]:
         at = []
@@ -146,8 +185,8 @@ def divergence_table(found: Divergence, rows: int = 8) -> str:
 
 
 def plot_divergence(found: Divergence, replay: Replay, path: Path, joints: int = 4) -> Path:
-    """The torso's height and up axis, real and ours, over the compared cycles, and the error of the
-    ``joints`` earliest-diverging joints, as PNG."""
+    """The torso's height and up axis, real and ours, over the compared cycles, the error of the ``joints``
+    earliest-diverging joints, and the normal force of the foot whose touching differs first, as PNG."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -158,7 +197,7 @@ def plot_divergence(found: Divergence, replay: Replay, path: Path, joints: int =
     def seconds(cycles: list[int]) -> list[float]:
         return [(i - found.skill_cycle) * CYCLE_S for i in cycles]
 
-    fig, axes = plt.subplots(3, 1, figsize=(10, 8), sharex=True)
+    fig, axes = plt.subplots(4, 1, figsize=(10, 10), sharex=True)
     posed = [i for i in found.cycles if i in replay.real and i in replay.ours]
     for side, truth in (("real", replay.real), ("ours", replay.ours)):
         axes[0].plot(seconds(posed), [truth[i].torso_m[2] for i in posed], label=side)
@@ -169,7 +208,12 @@ def plot_divergence(found: Divergence, replay: Replay, path: Path, joints: int =
         cycles = sorted(joint.error_deg)
         axes[2].plot(seconds(cycles), [joint.error_deg[i] for i in cycles], label=joint.joint)
     axes[2].set_ylabel("joint angle, ours - real [deg]")
-    axes[2].set_xlabel("time after the skill's start [s]")
+    contact = found.contacts[0] if found.contacts else None
+    if contact is not None:
+        for side, forces in (("real", contact.real_force_n), ("ours", contact.ours_force_n)):
+            axes[3].plot(seconds(found.cycles), [forces.get(i, 0.0) for i in found.cycles], label=f"{side} {contact.sensor}")
+    axes[3].set_ylabel("foot normal force [N]")
+    axes[3].set_xlabel("time after the skill's start [s]")
     for ax in axes:
         ax.legend(loc="upper left")
         ax.grid(alpha=0.3)
@@ -177,4 +221,4 @@ def plot_divergence(found: Divergence, replay: Replay, path: Path, joints: int =
     return write_png(fig, path)
 
 
-__all__ = ["Divergence", "JointDivergence", "PoseDivergence", "divergence", "divergence_table", "plot_divergence"]
+__all__ = ["ContactDivergence", "Divergence", "JointDivergence", "PoseDivergence", "divergence", "divergence_table", "plot_divergence"]

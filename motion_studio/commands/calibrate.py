@@ -37,8 +37,8 @@ def calibrate(
     only: Annotated[list[str] | None, typer.Option(help="use only traces whose name contains this (repeatable); "
                                                         "'ball_roll' is the real ball-roll figure")] = None,
     divergence: Annotated[bool, typer.Option(help="with --only: where each replay leaves its real recording (the "
-                                                  "first joints past --threshold-deg, the torso), with a plot "
-                                                  "per trace in --out")] = False,
+                                                  "first joints past --threshold-deg, feet touching on one side "
+                                                  "only, the torso), with a plot per trace in --out")] = False,
     threshold_deg: Annotated[float, typer.Option(min=0.01, help="--divergence: a joint has left the real one when "
                                                               "it is this far off [deg]")] = 1.0,
 ) -> None:

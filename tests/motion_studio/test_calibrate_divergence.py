@@ -38,6 +38,22 @@ def test_a_replay_that_is_the_recording_never_diverges() -> None:
     assert (pose.position_cycle, pose.height_cycle, pose.up_cycle, pose.heading_cycle, pose.parted_cycle) == (
         None, None, None, None, None)
     assert len(found.cycles) == len(trace.received) - trace.skill_cycle
+    assert {c.sensor for c in found.contacts} == {"lf", "rf"}
+    assert all(c.first_cycle is None for c in found.contacts)
+
+
+def test_a_foot_that_touches_on_one_side_only_is_counted_from_its_cycle() -> None:
+    trace = read_fixture(WALK)
+    start = trace.skill_cycle + 20
+    replay = _as_recorded(trace)
+    lifted = [re.sub(rb"\(FRP \(n rf\)[^()]*\([^()]*\)[^()]*\([^()]*\)\)", b"", m) if i >= start else m
+              for i, m in enumerate(replay.states.messages)]
+    found = divergence(Replay(trace, ReplayStates(dict(trace.truth), lifted, 0, 0)))
+    right = next(c for c in found.contacts if c.sensor == "rf")
+    touching_real = [i for i in found.cycles if i >= start and right.real_force_n.get(i, 0.0) > 1.0]
+    assert len(touching_real) > 50 and touching_real[0] == start   # the robot stands, then walks
+    assert right.differing_cycles == touching_real
+    assert all(c.first_cycle is None for c in found.contacts if c.sensor != "rf")
 
 
 def test_one_joint_off_by_more_than_the_threshold_is_named_first_at_its_cycle() -> None:
@@ -65,7 +81,12 @@ def test_the_real_forward_walk_replayed_here_leaves_it_at_the_left_hip_pitch() -
     assert at_3_s < -5.0, at_3_s
     assert all(abs(j.error_deg[trace.skill_cycle + 150]) < 2.0 for j in found.joints[1:])
     assert found.pose.real_fall_cycle is None and found.pose.ours_fall_cycle is not None
-    assert "llj3" in divergence_table(found).splitlines()[3]
+    # before any joint leaves the real one, our feet stay loaded where the real ones have lifted off
+    lift_off = min(c.first_cycle for c in found.contacts if c.first_cycle is not None)
+    assert lift_off < first.first_cycle
+    late = next(c for c in found.contacts if c.first_cycle == lift_off)
+    assert late.ours_force_n[lift_off] > 5.0 and late.real_force_n.get(lift_off, 0.0) < 1.0
+    assert "llj3" in divergence_table(found).splitlines()[4]
 
 
 def test_the_command_prints_the_table_and_writes_the_plot(tmp_path: Path) -> None:
