@@ -33,6 +33,8 @@ HEIGHT_THRESHOLD_M = 0.01
 UP_Z_THRESHOLD = 0.05
 #: ... or its heading this far [deg].
 HEADING_THRESHOLD_DEG = 5.0
+#: The robots have parted when one is fallen and the other not for this many cycles in a row (0.5 s).
+PARTED_HOLD_CYCLES = 25
 #: A foot touches the ground in a cycle when its FRP reports more than this normal force [N] (a lifting real foot
 #: still inside ODE's surface layer reads about 0 N).
 TOUCH_FORCE_N = 1.0
@@ -64,7 +66,7 @@ class PoseDivergence:
     real_fall_cycle: int | None
     ours_fall_cycle: int | None
     parted_cycle: int | None
-    """First cycle one robot is fallen and the other not (None: always the same)."""
+    """First cycle of the first half second in which one robot is fallen and the other not (None: never)."""
 
 
 @dataclass(frozen=True)
@@ -84,9 +86,9 @@ class ContactDivergence:
 
 @dataclass(frozen=True)
 class Divergence:
-    """A replay's divergence from its real recording, over the cycles from the skill's start until one robot is
-    fallen and the other not (open loop, what follows says nothing more; both falling, as a stand-up trace's
-    scripted fall, is compared on)."""
+    """A replay's divergence from its real recording, over the cycles from the skill's start until one robot has been
+    fallen and the other not for half a second (open loop, what follows says nothing more; both falling, as a
+    stand-up trace's scripted fall, is compared on, a cycle apart too)."""
 
     trace: str
     skill_cycle: int
@@ -106,6 +108,20 @@ def _first(cycles: list[int], past: Callable[[int], bool]) -> int | None:
     return next((i for i in cycles if past(i)), None)
 
 
+def _parted(cycles: list[int], real: dict[int, Truth], ours: dict[int, Truth]) -> int | None:
+    """First cycle of the first run of `PARTED_HOLD_CYCLES` in which one robot is fallen and the other not (a
+    scripted fall that lands a cycle earlier on one server is not a parting)."""
+    run_start, run = None, 0
+    for i in cycles:
+        if i in real and i in ours and fallen(real[i]) != fallen(ours[i]):
+            run_start, run = (i if run == 0 else run_start), run + 1
+            if run >= PARTED_HOLD_CYCLES:
+                return run_start
+        else:
+            run = 0
+    return None
+
+
 def divergence(replay: Replay, threshold_deg: float = JOINT_THRESHOLD_DEG) -> Divergence:
     """Compare ``replay`` with its real recording cycle by cycle from the skill's start (see `Divergence`).
 
@@ -120,8 +136,7 @@ def divergence(replay: Replay, threshold_deg: float = JOINT_THRESHOLD_DEG) -> Di
     real_truth, ours_truth = replay.real, replay.ours
     real_fall = next((i for i in shared if i in real_truth and fallen(real_truth[i])), None)
     ours_fall = next((i for i in shared if i in ours_truth and fallen(ours_truth[i])), None)
-    parted = next((i for i in shared if i in real_truth and i in ours_truth
-                   and fallen(real_truth[i]) != fallen(ours_truth[i])), None)
+    parted = _parted(shared, real_truth, ours_truth)
     cycles = [i for i in shared if parted is None or i <= parted]
     errors: dict[str, dict[int, float]] = {}
     real_force: dict[str, dict[int, float]] = {}
@@ -169,7 +184,7 @@ def divergence_table(found: Divergence, rows: int = 8) -> str:
     lines = [f"{found.trace}: skill from cycle {found.skill_cycle}, compared over {len(found.cycles)} cycles",
              f"torso past its threshold [s after the skill's start]: position {s(pose.position_cycle)}, height "
              f"{s(pose.height_cycle)}, up axis {s(pose.up_cycle)}, heading {s(pose.heading_cycle)}; fell: real "
-             f"{s(pose.real_fall_cycle)}, ours {s(pose.ours_fall_cycle)}; one fallen, the other not: {s(pose.parted_cycle)}",
+             f"{s(pose.real_fall_cycle)}, ours {s(pose.ours_fall_cycle)}; one fallen and the other not for 0.5 s from: {s(pose.parted_cycle)}",
              "feet touching on one side only (FRP above 1 N): " + (", ".join(
                  f"{c.sensor} first at {s(c.first_cycle)} s ({c.real_force_n.get(c.first_cycle, 0.0):.1f} N real, "
                  f"{c.ours_force_n.get(c.first_cycle, 0.0):.1f} N ours), {len(c.differing_cycles)} of "
