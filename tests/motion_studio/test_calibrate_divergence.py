@@ -99,3 +99,19 @@ def test_the_command_prints_the_table_and_writes_the_plot(tmp_path: Path) -> Non
                              capture_output=True, text=True, timeout=120)
     assert refused.returncode == 2
     assert refused.stderr.strip().count("\n") == 0 and "--only" in refused.stderr
+
+
+@pytest.mark.parametrize("cycles_apart, parted", [(10, False), (30, True)])
+def test_the_robots_part_only_after_half_a_second_apart(cycles_apart: int, parted: bool) -> None:
+    """A fall that lands a few cycles earlier on one server is not a parting; half a second of one robot down and
+    the other up is, from its first cycle."""
+    from dataclasses import replace
+
+    trace = read_fixture(WALK)
+    start = trace.skill_cycle + 40
+    ours = {i: (replace(t, up_z=0.1) if start <= i < start + cycles_apart else t) for i, t in trace.truth.items()}
+    messages = list(trace.received)
+    found = divergence(Replay(trace, ReplayStates(ours, messages, 0, 0)))
+    assert found.pose.parted_cycle == (start if parted else None)
+    assert found.pose.ours_fall_cycle == start and found.pose.real_fall_cycle is None
+    assert found.cycles[-1] == (start if parted else len(trace.received) - 1)
