@@ -58,6 +58,9 @@ def calibrate(
     if divergence and not only:
         typer.echo("error: --divergence needs --only NAME (one plot and table per trace)", err=True)
         raise typer.Exit(2)
+    if divergence and generations:
+        typer.echo("error: --divergence reports the current parameters; run it without --generations", err=True)
+        raise typer.Exit(2)
     paths = [p for p in find_fixture_files(traces) if not only or any(o in p.name for o in only)]
     if not paths:
         typer.echo(f"error: --traces {traces}: no real_*.jsonl.gz trace files there", err=True)

@@ -99,6 +99,10 @@ def test_the_command_prints_the_table_and_writes_the_plot(tmp_path: Path) -> Non
                              capture_output=True, text=True, timeout=120)
     assert refused.returncode == 2
     assert refused.stderr.strip().count("\n") == 0 and "--only" in refused.stderr
+    with_fit = subprocess.run([sys.executable, "-m", "motion_studio", "calibrate", "--only", "skill_stand",
+                               "--divergence", "--generations", "2"], capture_output=True, text=True, timeout=120)
+    assert with_fit.returncode == 2 and "--generations" in with_fit.stderr
+    assert with_fit.stderr.strip().count("\n") == 0
 
 
 @pytest.mark.parametrize("cycles_apart, parted", [(10, False), (30, True)])
