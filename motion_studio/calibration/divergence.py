@@ -13,6 +13,7 @@ Angles are the HJ perceptors' [deg] (SimSpark signs); cycles are sense-message i
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
@@ -134,8 +135,8 @@ def divergence(replay: Replay, threshold_deg: float = JOINT_THRESHOLD_DEG) -> Di
     if not shared:
         raise ValueError(f"{fixture.name}: no cycle from the skill's start ({start}) on both sides")
     real_truth, ours_truth = replay.real, replay.ours
-    real_fall = next((i for i in shared if i in real_truth and fallen(real_truth[i])), None)
-    ours_fall = next((i for i in shared if i in ours_truth and fallen(ours_truth[i])), None)
+    real_fall = _first(shared, lambda i: i in real_truth and fallen(real_truth[i]))
+    ours_fall = _first(shared, lambda i: i in ours_truth and fallen(ours_truth[i]))
     parted = _parted(shared, real_truth, ours_truth)
     cycles = [i for i in shared if parted is None or i <= parted]
     errors: dict[str, dict[int, float]] = {}
@@ -158,9 +159,7 @@ def divergence(replay: Replay, threshold_deg: float = JOINT_THRESHOLD_DEG) -> Di
         return abs(measure(ours_truth[i]) - measure(real_truth[i]))
 
     pose = PoseDivergence(
-        _first(posed, lambda i: ((ours_truth[i].torso_m[0] - real_truth[i].torso_m[0]) ** 2
-                                 + (ours_truth[i].torso_m[1] - real_truth[i].torso_m[1]) ** 2) ** 0.5
-               > POSITION_THRESHOLD_M),
+        _first(posed, lambda i: math.dist(ours_truth[i].torso_m[:2], real_truth[i].torso_m[:2]) > POSITION_THRESHOLD_M),
         _first(posed, lambda i: gap(i, lambda t: t.torso_m[2]) > HEIGHT_THRESHOLD_M),
         _first(posed, lambda i: gap(i, lambda t: t.up_z) > UP_Z_THRESHOLD),
         _first(posed, lambda i: abs(wrap_deg(ours_truth[i].heading_deg - real_truth[i].heading_deg))
