@@ -14,11 +14,15 @@ Angles are the HJ perceptors' [deg] (SimSpark signs); cycles are sense-message i
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from functools import lru_cache
 from pathlib import Path
 
 from agent.protocol.constants import CYCLE_S
+from agent.protocol.effectors import JointVelocity, parse_actions, split_joint_commands
+from agent.protocol.errors import ProtocolError
+from kinematics.spec import robot_spec
 from motion_studio.calibration.agreement import Replay
 from motion_studio.realserver.measures import fallen, wrap_deg
 from motion_studio.scenarios import Truth
@@ -39,6 +43,13 @@ PARTED_HOLD_CYCLES = 25
 #: A foot touches the ground in a cycle when its FRP reports more than this normal force [N] (a lifting real foot
 #: still inside ODE's surface layer reads about 0 N).
 TOUCH_FORCE_N = 1.0
+#: A commanded joint is held still in a cycle when its HJ reading moves less than this [deg] ...
+STILL_DEG = 0.01
+#: ... although the velocity it was sent is at least this [rad/s] (0.3 rad/s moves a free joint 0.34 deg a cycle) ...
+STILL_COMMAND_RAD_S = 0.3
+#: ... and a cycle is frozen when this many joints are held so: SimSpark's self-collision foul freezes the joints of
+#: both colliding limbs (4-6 each) for a second; one joint resting against its stop is not a freeze.
+FROZEN_MIN_JOINTS = 3
 
 
 @dataclass(frozen=True)
@@ -86,6 +97,19 @@ class ContactDivergence:
 
 
 @dataclass(frozen=True)
+class FrozenEpisode:
+    """Cycles in a row on which several commanded joints did not move on one server (``side``: "real" or "ours"):
+    the referee froze them (a self-collision foul, 1 s). An open-loop replay follows such a freeze only when the same
+    foul is called here in the same cycle; the real front stand-up's recording has one that ours does not call."""
+
+    side: str
+    first_cycle: int
+    last_cycle: int
+    joints: tuple[str, ...]
+    """The joints held still in the episode's first cycle (HJ names, sorted)."""
+
+
+@dataclass(frozen=True)
 class Divergence:
     """A replay's divergence from its real recording, over the cycles from the skill's start until one robot has been
     fallen and the other not for half a second (open loop, what follows says nothing more; both falling, as a
@@ -99,6 +123,8 @@ class Divergence:
     pose: PoseDivergence
     contacts: list[ContactDivergence]
     """Every foot sensor either side reports, earliest difference first."""
+    frozen: list[FrozenEpisode]
+    """Frozen joints on either server over the compared cycles, in order of their first cycle."""
 
     def seconds_after_skill(self, cycle: int | None) -> str:
         """``cycle`` as seconds after the skill's start, for tables ("-" for None)."""
@@ -107,6 +133,61 @@ class Divergence:
 
 def _first(cycles: list[int], past: Callable[[int], bool]) -> int | None:
     return next((i for i in cycles if past(i)), None)
+
+
+@lru_cache(maxsize=1)
+def _perceptor_of() -> dict[str, str]:
+    """Effector name -> HJ perceptor name (``lae1`` -> ``laj1``) over every robot type's joints."""
+    return {joint.effector: joint.perceptor for robot_type in range(5) for joint in robot_spec(robot_type).joints}
+
+
+def _commanded_rad_s(reply: bytes | None) -> dict[str, float]:
+    """HJ name -> velocity [rad/s] the agent's answer sent (empty for no answer or one that does not parse)."""
+    if not reply:
+        return {}
+    perceptor = _perceptor_of()
+    text = reply.decode("ascii", "replace")
+    split = split_joint_commands(text)
+    if split is not None:
+        names, values, _ = split
+        return {perceptor[n]: v for n, v in zip(names, values) if n in perceptor}
+    try:
+        actions = parse_actions(text)
+    except ProtocolError:
+        return {}
+    return {perceptor[a.effector]: a.velocity_rad_s for a in actions
+            if isinstance(a, JointVelocity) and a.effector in perceptor}
+
+
+def frozen_episodes(replay: Replay, side: str, cycles: Sequence[int]) -> list[FrozenEpisode]:
+    """The runs of cycles on ``side`` in which `FROZEN_MIN_JOINTS` or more joints commanded at least
+    `STILL_COMMAND_RAD_S` moved less than `STILL_DEG`. The answer to sense message i moves the joints between
+    messages i + 1 and i + 2 (both servers apply it in the step after the next message), so cycle i is judged on
+    those two readings."""
+    last = len(replay.fixture.received) if side == "real" else len(replay.states.messages)
+    episodes: list[FrozenEpisode] = []
+    run: list[int] = []
+    joints: tuple[str, ...] = ()
+    for i in cycles:
+        if i + 2 >= last:
+            break
+        commanded = _commanded_rad_s(replay.fixture.replies.get(i))
+        before, after = replay.sense(side, i + 1).joints, replay.sense(side, i + 2).joints
+        still = sorted(j for j, v in commanded.items()
+                       if abs(v) >= STILL_COMMAND_RAD_S and j in before and j in after and abs(after[j] - before[j]) < STILL_DEG)
+        if len(still) >= FROZEN_MIN_JOINTS and (not run or run[-1] == i - 1):
+            if not run:
+                joints = tuple(still)
+            run.append(i)
+            continue
+        if run:
+            episodes.append(FrozenEpisode(side, run[0], run[-1], joints))
+            run = []
+        if len(still) >= FROZEN_MIN_JOINTS:
+            run, joints = [i], tuple(still)
+    if run:
+        episodes.append(FrozenEpisode(side, run[0], run[-1], joints))
+    return episodes
 
 
 def _parted(cycles: list[int], real: dict[int, Truth], ours: dict[int, Truth]) -> int | None:
@@ -172,7 +253,9 @@ def divergence(replay: Replay, threshold_deg: float = JOINT_THRESHOLD_DEG) -> Di
                      if (real_n.get(i, 0.0) > TOUCH_FORCE_N) != (ours_n.get(i, 0.0) > TOUCH_FORCE_N)]
         contacts.append(ContactDivergence(sensor, differing, real_n, ours_n))
     contacts.sort(key=lambda c: (c.first_cycle is None, c.first_cycle or 0, c.sensor))
-    return Divergence(fixture.name, start, cycles, joints, pose, contacts)
+    frozen = sorted(frozen_episodes(replay, "real", cycles) + frozen_episodes(replay, "ours", cycles),
+                    key=lambda e: (e.first_cycle, e.side))
+    return Divergence(fixture.name, start, cycles, joints, pose, contacts, frozen)
 
 
 def divergence_table(found: Divergence, rows: int = 8) -> str:
@@ -188,6 +271,9 @@ def divergence_table(found: Divergence, rows: int = 8) -> str:
                  f"{c.sensor} first at {s(c.first_cycle)} s ({c.real_force_n.get(c.first_cycle, 0.0):.1f} N real, "
                  f"{c.ours_force_n.get(c.first_cycle, 0.0):.1f} N ours), {len(c.differing_cycles)} of "
                  f"{len(found.cycles)} cycles" for c in found.contacts if c.first_cycle is not None) or "never"),
+             "joints held still although commanded (a referee freeze): " + (", ".join(
+                 f"{e.side} at {s(e.first_cycle)} s for {(e.last_cycle - e.first_cycle + 1) * CYCLE_S:.2f} s "
+                 f"({' '.join(e.joints)})" for e in found.frozen) or "never"),
              f"{'joint':6s} {'past [s]':>9s} {'at 1 s':>8s} {'at 2 s':>8s} {'at 3 s':>8s} {'max':>8s}  (ours - real, deg)"]
     for joint in found.joints[:rows]:
         at = []
@@ -195,6 +281,56 @@ def divergence_table(found: Divergence, rows: int = 8) -> str:
             cycle = found.skill_cycle + round(seconds / CYCLE_S)
             at.append(f"{joint.error_deg[cycle]:+8.2f}" if cycle in joint.error_deg else f"{'-':>8s}")
         lines.append(f"{joint.joint:6s} {s(joint.first_cycle):>9s} {' '.join(at)} {joint.max_abs_deg:8.2f}")
+    return "\n".join(lines)
+
+
+def cycle_table(found: Divergence, replay: Replay, first_s: float, last_s: float, joints: Sequence[str] = ()) -> str:
+    """Cycle by cycle from ``first_s`` to ``last_s`` after the skill's start: the torso's height [m] and its change
+    since the cycle before [mm], each foot sensor's normal force [N] and the ``joints``' HJ angles [deg] (default:
+    the three earliest-diverging), real then ours.
+
+    Why: the divergence table says when a replay left the real run; these rows say how. They showed that the real
+    forward walk has a cycle with both feet off the ground before every left landing (its torso drops 5.3 mm in it,
+    ours 3.1 mm while the right foot still carries 10 N), and that the real front stand-up's joints stood still for a
+    second while commanded on (a self-collision freeze).
+
+    Raises:
+        ValueError: a joint neither side reports, or ``last_s`` before ``first_s``.
+    """
+    if last_s < first_s:
+        raise ValueError(f"the window {first_s:g}:{last_s:g} s ends before it starts")
+    start = found.skill_cycle
+    last_message = min(len(replay.fixture.received), len(replay.states.messages)) - 1
+    cycles = [i for i in range(start + round(first_s / CYCLE_S), start + round(last_s / CYCLE_S) + 1)
+              if 0 <= i <= last_message]
+    chosen = list(joints) or [j.joint for j in found.joints[:3]]
+    sensors = [c.sensor for c in found.contacts] or ["lf", "rf"]
+    if cycles:
+        known = replay.sense("real", cycles[0]).joints.keys() | replay.sense("ours", cycles[0]).joints.keys()
+        unknown = [j for j in chosen if j not in known]
+        if unknown:
+            raise ValueError(f"no joint {', '.join(unknown)} in {found.trace} (it has {' '.join(sorted(known))})")
+    header = ["  cycle", "t [s]", "torso z real / ours [m]", "dz [mm]"] + [f"{f} [N]" for f in sensors] + \
+        [f"{j} [deg]" for j in chosen]
+    lines = [f"{found.trace}: cycles {first_s:g}-{last_s:g} s after the skill's start, real / ours",
+             " | ".join(header)]
+    previous: dict[str, float] = {}
+    for i in cycles:
+        real, ours = replay.sense("real", i), replay.sense("ours", i)
+        cells = [f"{i:7d}", f"{(i - start) * CYCLE_S:5.2f}"]
+        heights = {side: truth[i].torso_m[2] for side, truth in (("real", replay.real), ("ours", replay.ours))
+                   if i in truth}
+        cells.append(" / ".join(f"{heights[side]:.4f}" if side in heights else "-" for side in ("real", "ours")))
+        cells.append(" / ".join(f"{1000 * (heights[side] - previous[side]):+5.2f}"
+                                if side in heights and side in previous else "-" for side in ("real", "ours")))
+        previous = heights
+        for sensor in sensors:
+            cells.append(" / ".join(f"{sense.frp[sensor].force_n[2]:6.1f}" if sensor in sense.frp else "     -"
+                                    for sense in (real, ours)))
+        for joint in chosen:
+            cells.append(" / ".join(f"{sense.joints[joint]:7.2f}" if joint in sense.joints else "      -"
+                                    for sense in (real, ours)))
+        lines.append(" | ".join(cells))
     return "\n".join(lines)
 
 
@@ -235,4 +371,5 @@ def plot_divergence(found: Divergence, replay: Replay, path: Path, joints: int =
     return write_png(fig, path)
 
 
-__all__ = ["ContactDivergence", "Divergence", "JointDivergence", "PoseDivergence", "divergence", "divergence_table", "plot_divergence"]
+__all__ = ["ContactDivergence", "Divergence", "FrozenEpisode", "JointDivergence", "PoseDivergence", "cycle_table",
+           "divergence", "divergence_table", "frozen_episodes", "plot_divergence"]

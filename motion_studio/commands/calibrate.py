@@ -41,6 +41,11 @@ def calibrate(
                                                   "only, the torso), with a plot per trace in --out")] = False,
     threshold_deg: Annotated[float, typer.Option(min=0.01, help="--divergence: a joint has left the real one when "
                                                               "it is this far off [deg]")] = 1.0,
+    cycles: Annotated[str | None, typer.Option(help="--divergence: also print these seconds after the skill's start "
+                                                    "cycle by cycle, 'FROM:TO' (torso height, feet forces, joints)")]
+        = None,
+    joints: Annotated[str | None, typer.Option(help="--cycles: the joints to print, comma-separated HJ names "
+                                                    "(default: the three earliest-diverging)")] = None,
 ) -> None:
     """Replay every real trace on our simulator, print the agreement per trace, and with --generations fit the
     contact parameters (friction, impratio, solimp, solref) to them; a killed fit resumes from --out."""
@@ -61,6 +66,10 @@ def calibrate(
     if divergence and generations:
         typer.echo("error: --divergence reports the current parameters; run it without --generations", err=True)
         raise typer.Exit(2)
+    if (cycles is not None or joints is not None) and not divergence:
+        typer.echo("error: --cycles and --joints print a --divergence report's cycles; add --divergence", err=True)
+        raise typer.Exit(2)
+    window = _window(cycles) if cycles is not None else None
     paths = [p for p in find_fixture_files(traces) if not only or any(o in p.name for o in only)]
     if not paths:
         typer.echo(f"error: --traces {traces}: no real_*.jsonl.gz trace files there", err=True)
@@ -76,7 +85,8 @@ def calibrate(
     logging.getLogger("sim").setLevel(logging.ERROR)   # blow-ups are counted in the objective
     base = default_physics_params()
     if divergence:
-        _report_divergence(loaded, base, threshold_deg, out)
+        chosen = tuple(j.strip() for j in joints.split(",") if j.strip()) if joints else ()
+        _report_divergence(loaded, base, threshold_deg, out, window, chosen)
         return
     ball_roll = not only or "ball_roll" in only
     before = evaluate(loaded, base, ball_roll=ball_roll)
@@ -116,10 +126,29 @@ def calibrate(
             typer.echo("not written: the fit found nothing better than the current parameters")
 
 
-def _report_divergence(loaded: list[Fixture], physics: PhysicsParams, threshold_deg: float, out: Path) -> None:
-    """``--divergence``: replay each skill trace and print where it leaves the real recording, plot it."""
+def _window(text: str) -> tuple[float, float]:
+    """``--cycles 'FROM:TO'`` -> (from, to) [s after the skill's start]; a one-line exit on anything else."""
+    parts = text.split(":")
+    try:
+        if len(parts) != 2:
+            raise ValueError
+        first, last = float(parts[0]), float(parts[1])
+    except ValueError:
+        typer.echo(f"error: --cycles {text!r}: give FROM:TO in seconds after the skill's start, e.g. 2.2:2.6",
+                   err=True)
+        raise typer.Exit(2) from None
+    if last < first or first < 0.0:
+        typer.echo(f"error: --cycles {text!r}: FROM must be at least 0 and TO not before FROM", err=True)
+        raise typer.Exit(2)
+    return first, last
+
+
+def _report_divergence(loaded: list[Fixture], physics: PhysicsParams, threshold_deg: float, out: Path,
+                       window: tuple[float, float] | None = None, joints: tuple[str, ...] = ()) -> None:
+    """``--divergence``: replay each skill trace and print where it leaves the real recording, plot it, and with
+    ``window`` print those seconds cycle by cycle."""
     from motion_studio.calibration.agreement import Replay
-    from motion_studio.calibration.divergence import divergence, divergence_table, plot_divergence
+    from motion_studio.calibration.divergence import cycle_table, divergence, divergence_table, plot_divergence
     from motion_studio.realserver.replay import replay_states
 
     for trace in loaded:
@@ -129,4 +158,10 @@ def _report_divergence(loaded: list[Fixture], physics: PhysicsParams, threshold_
         replay = Replay(trace, replay_states(trace, physics))
         found = divergence(replay, threshold_deg)
         typer.echo(divergence_table(found))
+        if window is not None:
+            try:
+                typer.echo(cycle_table(found, replay, *window, joints=joints))
+            except ValueError as error:
+                typer.echo(f"error: {error}", err=True)
+                raise typer.Exit(2) from None
         typer.echo(f"plot: {plot_divergence(found, replay, out / f'divergence_{trace.name}.png')}")
