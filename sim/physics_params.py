@@ -298,6 +298,17 @@ sessions), benchmarks/bench_sim.py.
   ODE's contact row pushes back only beyond its 1 mm surface layer (ERP 0.6, soft CFM 1e-4: at rest 1.02 mm deep)
   but stops a touching foot from depth 0, which MuJoCo's reference distance cannot express (a negative margin,
   ``surface_layer_m``, moves the onset to the same depth).
+  Cycle by cycle (2026-11-29, ``motion-studio calibrate --only skill_walk_forward --divergence --cycles 2.2:2.6``):
+  the real walk has a flight cycle before every left landing, both feet off the ground (no left FRP, the right one
+  -0.4 N), in which its torso drops 5.2-5.3 mm; ours still stands on the right foot with 8-10 N there and drops
+  3.1-3.5 mm, so the real left foot lands with 127.6 N and ours with 73-84 N. Before each right landing it is the
+  other way round: the real right foot lands a cycle earlier (67 N while the left lifts), ours a cycle later with
+  83-96 N. While walking our torso is 1-7 mm lower than the real one on the same joint angles (standing it is 0.6 mm
+  higher). Also tried today, each with the same staircase and a fall at 3.3-7.0 s: ``surface_layer_m`` 0.3, 0.5
+  and 0.7 mm at the default impedance; direct solref (-10000, -500) and (-10000, -1000) at impedance 0.95 (the
+  feet hop: 0 N on both from 0.06 s); swing feet meeting the field through their drifted twins at 1-3 mm
+  (``swing_drift_ground_m``; the twins then carry the stance, the torso stands 2-4 mm above the real one, and the
+  FRP, which reads the originals only, shows 0 N), with ``joint_slack_erp`` 0.3 / 0.4 (less drift) as well.
 * **Force-dependent slip at SimSpark's own value on every robot box (measured 2026-11-29, not kept).** With body and
   feet at 5e-3 m/s per N (rsg/agent/nao/contactjointhandler.rsg) the real front stand-up's open-loop replays 2 and
   3 stand (defaults and slip_fit_2026-11-29: fall forward out of the crouch) and ours' loaded joints lag as the real

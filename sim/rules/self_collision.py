@@ -4,6 +4,14 @@ The overlap test is the server's BoxCollider::CheckCollisions, reproduced on pur
 15 separating-axis candidates are not normalised and the 0.04 m tolerance is added to the projection of
 the centre offset, so a cross-product axis of two (nearly) parallel box axes always "separates". In
 practice a pair is reported only when the boxes are turned against each other about every axis.
+
+Measured against the real server (2026-11-29): in the real front stand-up's recording
+(tests/sim/fixtures/real_0.7.3_skill_standup_front.jsonl.gz) both arms and both legs stood still for 1.02 s from
+3.26 s after the skill's start while commanded on (``motion-studio calibrate --only skill_standup_front
+--divergence`` reports it): a self-collision foul of each lower arm with its leg. Replayed here open loop no foul is
+called; with the real joint angles put on our robot at that cycle the lower arm overlaps its shank by more than the
+tolerance on 14 of the 15 axes and falls 2.0 mm short on the cross axis of the two boxes' x axes. So the rule sits
+at its edge there, and a few millimetres of pose (ODE's joint drift, a degree at the hip) decide it.
 """
 
 from __future__ import annotations
