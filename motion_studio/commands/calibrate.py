@@ -46,6 +46,11 @@ def calibrate(
         = None,
     joints: Annotated[str | None, typer.Option(help="--cycles: the joints to print, comma-separated HJ names "
                                                     "(default: the three earliest-diverging)")] = None,
+    spread: Annotated[int, typer.Option(min=0, max=100, help="replay each skill trace this many times more with its "
+                                                            "joint commands perturbed by the wire format's last digit "
+                                                            "(1e-4 rad/s) and print the share ending as the real run "
+                                                            "(holds / marginal / differs)")] = 0,
+    workers: Annotated[int, typer.Option(min=1, max=64, help="--spread: processes replaying traces")] = 1,
 ) -> None:
     """Replay every real trace on our simulator, print the agreement per trace, and with --generations fit the
     contact parameters (friction, impratio, solimp, solref) to them; a killed fit resumes from --out."""
@@ -70,6 +75,10 @@ def calibrate(
         typer.echo("error: --cycles and --joints print a --divergence report's cycles; add --divergence", err=True)
         raise typer.Exit(2)
     window = _window(cycles) if cycles is not None else None
+    if spread and (divergence or generations):
+        typer.echo("error: --spread reports the current parameters on its own; run it without --divergence and "
+                   "--generations", err=True)
+        raise typer.Exit(2)
     paths = [p for p in find_fixture_files(traces) if not only or any(o in p.name for o in only)]
     if not paths:
         typer.echo(f"error: --traces {traces}: no real_*.jsonl.gz trace files there", err=True)
@@ -87,6 +96,9 @@ def calibrate(
     if divergence:
         chosen = tuple(j.strip() for j in joints.split(",") if j.strip()) if joints else ()
         _report_divergence(loaded, base, threshold_deg, out, window, chosen)
+        return
+    if spread:
+        _report_spread(loaded, base, spread, seed, workers)
         return
     ball_roll = not only or "ball_roll" in only
     before = evaluate(loaded, base, ball_roll=ball_roll)
@@ -124,6 +136,42 @@ def calibrate(
             typer.echo(f"written: {CALIBRATED_FILE}")
         elif write:
             typer.echo("not written: the fit found nothing better than the current parameters")
+
+
+def _spread_one(job: tuple[Fixture, PhysicsParams, int, int]):  # noqa: ANN202 - OutcomeSpread | None
+    """One trace's `outcome_spread` (a top-level function, so that a process pool can run it)."""
+    from motion_studio.calibration.sensitivity import outcome_spread
+
+    trace, physics, replays, seed = job
+    logging.getLogger("sim").setLevel(logging.ERROR)
+    return outcome_spread(trace, physics, replays, seed=seed)
+
+
+def _report_spread(loaded: list[Fixture], physics: PhysicsParams, replays: int, seed: int, workers: int) -> None:
+    """``--spread``: each skill trace replayed as recorded and ``replays`` times perturbed, as a table."""
+    from concurrent.futures import ProcessPoolExecutor
+
+    from tqdm import tqdm
+
+    from motion_studio.calibration.sensitivity import spread_table
+
+    jobs = [(trace, physics, replays, seed) for trace in loaded if trace.truth]
+    if not jobs:
+        typer.echo("error: --spread needs skill traces (real poses); the selected ones are scripted", err=True)
+        raise typer.Exit(2)
+    with tqdm(total=len(jobs), desc="spread", unit="trace") as bar:
+        if workers == 1:
+            found = []
+            for job in jobs:
+                found.append(_spread_one(job))
+                bar.update(1)
+        else:
+            with ProcessPoolExecutor(max_workers=workers) as pool:
+                found = []
+                for result in pool.map(_spread_one, jobs):
+                    found.append(result)
+                    bar.update(1)
+    typer.echo(spread_table([s for s in found if s is not None]))
 
 
 def _window(text: str) -> tuple[float, float]:

@@ -76,6 +76,7 @@ HOW = {
     "calibrate --generations 20 --write": PARSE,
     "calibrate --only skill_walk_forward --divergence": RUN,   # two replays, ~10 s
     "calibrate --only skill_walk_forward --divergence --cycles 2.2:2.6 --joints llj3,rlj3": RUN,
+    "calibrate --spread 8 --workers 2": PARSE,   # 69 traces x 9 replays: ~10 min on 2 cores
     "calibrate --parameters slip --generations 10": PARSE,   # ~25 min (100 replay sets)
 }
 #: The line a served example prints once it is up.

@@ -1,0 +1,114 @@
+"""How firmly an open-loop replay's outcome holds: the same recording replayed with its joint commands perturbed far
+below anything a server could tell apart, and the share of those replays that end as the real run did.
+
+Why: `agreement.outcomes` compares one replay's ending (fell or not, standing at the end or not) with the real
+run's. Many recordings are marginal: a stand-up that just makes it, a walk replayed open loop whose real corrections
+drift on ours. Changing one contact parameter (dampratio 1 -> 2) flipped 16 of the 69 skill traces' outcomes, 8 each
+way, the count staying at 44. A single replay cannot say whether a mismatch is the physics' (ours ends otherwise
+in every perturbed replay) or the recording's chance (ours ends either way): the share here does.
+
+The perturbation: every joint velocity the real agent sent gets N(0, ``sd_rad_s``) added, drawn per command from a
+seeded generator, and is written in the agent's spelling (4 decimals); replies that are not plain joint commands
+(scene, init, beam, say) stay as recorded. The default 1e-4 rad/s is the last digit the wire format carries: most
+commands change by that one digit or not at all, 6e-6 deg of joint travel per cycle, 1/2000 of the HJ perceptor's
+last digit (0.01 deg). Unperturbed (0) the replays repeat to the bit.
+"""
+
+from __future__ import annotations
+
+import random
+from collections.abc import Callable
+from dataclasses import dataclass, replace
+
+from agent.protocol.effectors import split_joint_commands
+from agent.protocol.numbers import format_agent_float
+from motion_studio.calibration.agreement import Outcome, Replay, outcomes
+from motion_studio.realserver.fixtures import Fixture
+from motion_studio.realserver.replay import replay_states
+from sim.physics_params import PhysicsParams
+
+#: Standard deviation of the command perturbation [rad/s] (see the module docstring).
+SD_RAD_S = 1e-4
+#: Perturbed replays per trace by default.
+REPLAYS = 8
+
+
+def perturbed_replies(fixture: Fixture, sd_rad_s: float, rng: random.Random) -> dict[int, bytes]:
+    """``fixture``'s replies with N(0, sd_rad_s) added to each joint velocity, in the agent's spelling
+    (`format_agent_float`) and order; a reply that is not plain joint commands (+ ``(syn)``) is kept as recorded."""
+    out: dict[int, bytes] = {}
+    for index, reply in fixture.replies.items():
+        split = split_joint_commands(reply.decode("ascii", "replace"))
+        if split is None or not split[0]:
+            out[index] = reply
+            continue
+        names, values, syn = split
+        text = "".join(f"({name} {format_agent_float(value + sd_rad_s * rng.gauss(0.0, 1.0))})"
+                       for name, value in zip(names, values))
+        out[index] = (text + ("(syn)" if syn else "")).encode("ascii")
+    return out
+
+
+@dataclass(frozen=True)
+class OutcomeSpread:
+    """One trace: the real outcome, ours unperturbed, and ours in each perturbed replay."""
+
+    trace: str
+    real: Outcome
+    ours: Outcome
+    perturbed: tuple[Outcome, ...]
+
+    @property
+    def same_share(self) -> float:
+        """Share of the perturbed replays that end as the real run did (0-1)."""
+        return sum(o == self.real for o in self.perturbed) / max(1, len(self.perturbed))
+
+    @property
+    def kind(self) -> str:
+        """"holds" (every perturbed replay ends as the real run), "differs" (none does) or "marginal"."""
+        share = self.same_share
+        return "holds" if share == 1.0 else "differs" if share == 0.0 else "marginal"
+
+
+def outcome_spread(fixture: Fixture, physics: PhysicsParams | None = None, replays: int = REPLAYS,
+                   sd_rad_s: float = SD_RAD_S, seed: int = 0,
+                   on_replay: Callable[[], None] | None = None) -> OutcomeSpread | None:
+    """Replay ``fixture`` once as recorded and ``replays`` times perturbed (seeds ``seed``..); None for a scripted
+    trace (no real outcome)."""
+    base = Replay(fixture, replay_states(fixture, physics))
+    ended = outcomes(base)
+    if ended is None:
+        return None
+    perturbed = []
+    for k in range(replays):
+        varied = replace(fixture, replies=perturbed_replies(fixture, sd_rad_s, random.Random(seed + k)))
+        replay = Replay(varied, replay_states(varied, physics))
+        result = outcomes(replay)
+        assert result is not None   # the same truth as the unperturbed replay
+        perturbed.append(result[1])
+        if on_replay is not None:
+            on_replay()
+    return OutcomeSpread(fixture.name, ended[0], ended[1], tuple(perturbed))
+
+
+def _outcome_text(outcome: Outcome) -> str:
+    return ("fell" if outcome.fell else "up") + ("/standing" if outcome.standing else "/down")
+
+
+def spread_table(spreads: list[OutcomeSpread]) -> str:
+    """One row per trace (real outcome, ours unperturbed, share of perturbed replays ending as the real run, kind),
+    then the counts of each kind."""
+    lines = [f"{'trace':38s} {'real':14s} {'ours':14s} {'same':>6s}  kind"]
+    for s in spreads:
+        mark = "" if s.ours == s.real else "!"
+        lines.append(f"{s.trace:38s} {_outcome_text(s.real):14s} {_outcome_text(s.ours) + mark:14s} "
+                     f"{s.same_share:6.2f}  {s.kind}")
+    counts = {kind: sum(s.kind == kind for s in spreads) for kind in ("holds", "marginal", "differs")}
+    same = sum(s.ours == s.real for s in spreads)
+    lines.append(f"unperturbed: {same} of {len(spreads)} end as the real run; perturbed "
+                 f"({len(spreads[0].perturbed) if spreads else 0} each): holds {counts['holds']}, marginal "
+                 f"{counts['marginal']}, differs {counts['differs']}")
+    return "\n".join(lines)
+
+
+__all__ = ["OutcomeSpread", "REPLAYS", "SD_RAD_S", "outcome_spread", "perturbed_replies", "spread_table"]
