@@ -55,7 +55,7 @@ def test_a_mismatch_that_the_last_digit_undoes() -> None:
     assert spread.ours != spread.real
     assert spread.same_share == 1.0 and spread.kind == "holds"
     table = spread_table([spread])
-    assert "fell/down!" in table and "holds 1, marginal 0, differs 0" in table
+    assert "fell/down!" in table and "holds 1, marginal 0, differs 0; expected to end as the real run: 1.0" in table
 
 
 def test_the_command_prints_the_spread_and_refuses_mixing() -> None:
