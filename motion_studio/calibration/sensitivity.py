@@ -22,9 +22,12 @@ front stand-up's recording and its starts 1, 2, 3, 6 and 7. The back and side st
 
 from __future__ import annotations
 
+import hashlib
 import random
 from collections.abc import Callable
-from dataclasses import dataclass, replace
+from dataclasses import asdict, dataclass, replace
+from pathlib import Path
+from typing import Any
 
 from agent.protocol.effectors import split_joint_commands
 from agent.protocol.numbers import format_agent_float
@@ -97,6 +100,53 @@ def outcome_spread(fixture: Fixture, physics: PhysicsParams | None = None, repla
     return OutcomeSpread(fixture.name, ended[0], ended[1], tuple(perturbed))
 
 
+def physics_id(physics: PhysicsParams | None) -> str:
+    """A short digest of the physics parameters, so that a checkpoint row is reused only for the same world."""
+    return hashlib.sha1(repr(physics).encode()).hexdigest()[:12]
+
+
+def spread_key(trace: str, physics: PhysicsParams | None, replays: int, seed: int,
+               sd_rad_s: float = SD_RAD_S) -> str:
+    """The checkpoint key of one trace's spread: the same trace, world, replay count, seed and perturbation."""
+    return f"{trace}|{physics_id(physics)}|{replays}|{seed}|{sd_rad_s:g}"
+
+
+def spread_row(spread: OutcomeSpread, key: str) -> dict[str, Any]:
+    """One finished spread as a JSON-able checkpoint row."""
+    return {"key": key, "trace": spread.trace, "real": asdict(spread.real), "ours": asdict(spread.ours),
+            "perturbed": [asdict(o) for o in spread.perturbed]}
+
+
+def spread_from_row(row: dict[str, Any]) -> OutcomeSpread:
+    """The spread a checkpoint row holds (`spread_row`'s inverse)."""
+    return OutcomeSpread(row["trace"], Outcome(**row["real"]), Outcome(**row["ours"]),
+                         tuple(Outcome(**o) for o in row["perturbed"]))
+
+
+def plot_spread(spreads: list[OutcomeSpread], path: Path) -> Path:
+    """One bar per trace: the share of its perturbed replays that end as the real run, coloured by kind, the
+    unperturbed mismatches marked; as PNG."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from motion_studio.figures import write_png
+
+    colours = {"holds": "tab:green", "marginal": "tab:orange", "differs": "tab:red"}
+    fig, ax = plt.subplots(figsize=(9, 0.22 * len(spreads) + 1.5))
+    rows = range(len(spreads))
+    ax.barh(list(rows), [s.same_share for s in spreads], color=[colours[s.kind] for s in spreads])
+    ax.set_yticks(list(rows), [s.trace + (" !" if s.ours != s.real else "") for s in spreads], fontsize=7)
+    ax.invert_yaxis()
+    ax.set_xlim(0, 1)
+    ax.set_xlabel("share of perturbed replays ending as the real run ('!': the unperturbed replay does not)")
+    ax.set_title("open-loop replays on ours: " + ", ".join(
+        f"{kind} {sum(s.kind == kind for s in spreads)}" for kind in colours))
+    ax.grid(axis="x", alpha=0.3)
+    return write_png(fig, path)
+
+
 def _outcome_text(outcome: Outcome) -> str:
     return ("fell" if outcome.fell else "up") + ("/standing" if outcome.standing else "/down")
 
@@ -118,4 +168,5 @@ def spread_table(spreads: list[OutcomeSpread]) -> str:
     return "\n".join(lines)
 
 
-__all__ = ["OutcomeSpread", "REPLAYS", "SD_RAD_S", "outcome_spread", "perturbed_replies", "spread_table"]
+__all__ = ["OutcomeSpread", "REPLAYS", "SD_RAD_S", "outcome_spread", "perturbed_replies", "physics_id", "plot_spread",
+           "spread_from_row", "spread_key", "spread_row", "spread_table"]

@@ -50,7 +50,8 @@ def calibrate(
                                                             "joint commands perturbed by the wire format's last digit "
                                                             "(1e-4 rad/s) and print the share ending as the real run "
                                                             "(holds / marginal / differs)")] = 0,
-    workers: Annotated[int, typer.Option(min=1, max=64, help="--spread: processes replaying traces")] = 1,
+    workers: Annotated[int, typer.Option(min=1, max=64, help="--spread: processes replaying traces (each finished "
+                                                            "trace goes to --out/spread.jsonl; a rerun resumes)")] = 1,
 ) -> None:
     """Replay every real trace on our simulator, print the agreement per trace, and with --generations fit the
     contact parameters (friction, impratio, solimp, solref) to them; a killed fit resumes from --out."""
@@ -98,7 +99,7 @@ def calibrate(
         _report_divergence(loaded, base, threshold_deg, out, window, chosen)
         return
     if spread:
-        _report_spread(loaded, base, spread, seed, workers)
+        _report_spread(loaded, base, spread, seed, workers, out)
         return
     ball_roll = not only or "ball_roll" in only
     before = evaluate(loaded, base, ball_roll=ball_roll)
@@ -147,31 +148,41 @@ def _spread_one(job: tuple[Fixture, PhysicsParams, int, int]):  # noqa: ANN202 -
     return outcome_spread(trace, physics, replays, seed=seed)
 
 
-def _report_spread(loaded: list[Fixture], physics: PhysicsParams, replays: int, seed: int, workers: int) -> None:
-    """``--spread``: each skill trace replayed as recorded and ``replays`` times perturbed, as a table."""
+def _report_spread(loaded: list[Fixture], physics: PhysicsParams, replays: int, seed: int, workers: int,
+                   out: Path) -> None:
+    """``--spread``: each skill trace replayed as recorded and ``replays`` times perturbed, as a table and a plot;
+    each finished trace is a line of ``out/spread.jsonl`` at once, and a rerun replays only the missing ones."""
     from concurrent.futures import ProcessPoolExecutor
+    from contextlib import ExitStack
 
     from tqdm import tqdm
 
-    from motion_studio.calibration.sensitivity import spread_table
+    from motion_studio.calibration.sensitivity import (plot_spread, spread_from_row, spread_key, spread_row,
+                                                       spread_table)
+    from sim.match_batch import append_result, read_results
 
-    jobs = [(trace, physics, replays, seed) for trace in loaded if trace.truth]
-    if not jobs:
+    skills = [trace for trace in loaded if trace.truth]
+    if not skills:
         typer.echo("error: --spread needs skill traces (real poses); the selected ones are scripted", err=True)
         raise typer.Exit(2)
-    with tqdm(total=len(jobs), desc="spread", unit="trace") as bar:
-        if workers == 1:
-            found = []
-            for job in jobs:
-                found.append(_spread_one(job))
-                bar.update(1)
-        else:
-            with ProcessPoolExecutor(max_workers=workers) as pool:
-                found = []
-                for result in pool.map(_spread_one, jobs):
-                    found.append(result)
-                    bar.update(1)
-    typer.echo(spread_table([s for s in found if s is not None]))
+    checkpoint = out / "spread.jsonl"
+    out.mkdir(parents=True, exist_ok=True)
+    keys = {trace.name: spread_key(trace.name, physics, replays, seed) for trace in skills}
+    done = {row["key"]: spread_from_row(row) for row in read_results(checkpoint)
+            if isinstance(row, dict) and row.get("key") in keys.values()}
+    jobs = [(trace, physics, replays, seed) for trace in skills if keys[trace.name] not in done]
+    with tqdm(total=len(skills), initial=len(skills) - len(jobs), desc="spread", unit="trace") as bar, \
+            ExitStack() as stack:
+        mapper = map if workers == 1 or len(jobs) < 2 else \
+            stack.enter_context(ProcessPoolExecutor(max_workers=workers)).map
+        for result in mapper(_spread_one, jobs):
+            if result is not None:
+                append_result(checkpoint, spread_row(result, keys[result.trace]))
+                done[keys[result.trace]] = result
+            bar.update(1)
+    spreads = [done[keys[trace.name]] for trace in skills if keys[trace.name] in done]
+    typer.echo(spread_table(spreads))
+    typer.echo(f"plot: {plot_spread(spreads, out / 'spread.png')}")
 
 
 def _window(text: str) -> tuple[float, float]:

@@ -58,11 +58,18 @@ def test_a_mismatch_that_the_last_digit_undoes() -> None:
     assert "fell/down!" in table and "holds 1, marginal 0, differs 0; expected to end as the real run: 1.0" in table
 
 
-def test_the_command_prints_the_spread_and_refuses_mixing() -> None:
-    run = subprocess.run([sys.executable, "-m", "motion_studio", "calibrate", "--only", "skill_turn_left",
-                          "--spread", "1"], capture_output=True, text=True, timeout=300)
+def test_the_command_prints_the_spread_resumes_and_refuses_mixing(tmp_path: Path) -> None:
+    command = [sys.executable, "-m", "motion_studio", "calibrate", "--only", "skill_turn_left", "--spread", "1",
+               "--out", str(tmp_path)]
+    run = subprocess.run(command, capture_output=True, text=True, timeout=300)
     assert run.returncode == 0, run.stderr
     assert "skill_turn_left" in run.stdout and "unperturbed:" in run.stdout
+    checkpoint = tmp_path / "spread.jsonl"
+    assert len(checkpoint.read_text().splitlines()) == 1
+    assert (tmp_path / "spread.png").stat().st_size > 5_000
+    again = subprocess.run(command, capture_output=True, text=True, timeout=300)   # from the checkpoint
+    assert again.returncode == 0 and again.stdout == run.stdout
+    assert len(checkpoint.read_text().splitlines()) == 1
     refused = subprocess.run([sys.executable, "-m", "motion_studio", "calibrate", "--only", "skill_turn_left",
                               "--spread", "2", "--divergence"], capture_output=True, text=True, timeout=120)
     assert refused.returncode == 2 and "--spread" in refused.stderr
