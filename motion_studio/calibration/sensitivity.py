@@ -10,8 +10,8 @@ in every perturbed replay) or the recording's chance (ours ends either way): the
 The perturbation: every joint velocity the real agent sent gets N(0, ``sd_rad_s``) added, drawn per command from a
 seeded generator, and is written in the agent's spelling (4 decimals); replies that are not plain joint commands
 (scene, init, beam, say) stay as recorded. The default 1e-4 rad/s is the last digit the wire format carries: most
-commands change by that one digit or not at all, 6e-6 deg of joint travel per cycle, 1/2000 of the HJ perceptor's
-last digit (0.01 deg). Unperturbed (0) the replays repeat to the bit.
+commands change by that one digit or not at all, 1.1e-4 deg of joint travel per cycle (2e-6 rad), a ninetieth of the
+HJ perceptor's last digit (0.01 deg). Unperturbed (0) the replays repeat to the bit.
 
 Measured on the defaults (2026-11-29, ``motion-studio calibrate --spread 8 --workers 2``, 69 skill traces, 8 min on 2
 cores): 44 end as the real run unperturbed; 36 hold, 17 are marginal, 16 differ in every perturbed replay; 45.1 are
