@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import lru_cache
 from pathlib import Path
 
@@ -165,28 +165,22 @@ def frozen_episodes(replay: Replay, side: str, cycles: Sequence[int]) -> list[Fr
     messages i + 1 and i + 2 (both servers apply it in the step after the next message), so cycle i is judged on
     those two readings."""
     last = len(replay.fixture.received) if side == "real" else len(replay.states.messages)
-    episodes: list[FrozenEpisode] = []
-    run: list[int] = []
-    joints: tuple[str, ...] = ()
+    frozen: list[tuple[int, tuple[str, ...]]] = []
     for i in cycles:
         if i + 2 >= last:
             break
         commanded = _commanded_rad_s(replay.fixture.replies.get(i))
         before, after = replay.sense(side, i + 1).joints, replay.sense(side, i + 2).joints
-        still = sorted(j for j, v in commanded.items()
-                       if abs(v) >= STILL_COMMAND_RAD_S and j in before and j in after and abs(after[j] - before[j]) < STILL_DEG)
-        if len(still) >= FROZEN_MIN_JOINTS and (not run or run[-1] == i - 1):
-            if not run:
-                joints = tuple(still)
-            run.append(i)
-            continue
-        if run:
-            episodes.append(FrozenEpisode(side, run[0], run[-1], joints))
-            run = []
+        still = tuple(sorted(j for j, v in commanded.items() if abs(v) >= STILL_COMMAND_RAD_S
+                             and j in before and j in after and abs(after[j] - before[j]) < STILL_DEG))
         if len(still) >= FROZEN_MIN_JOINTS:
-            run, joints = [i], tuple(still)
-    if run:
-        episodes.append(FrozenEpisode(side, run[0], run[-1], joints))
+            frozen.append((i, still))
+    episodes: list[FrozenEpisode] = []
+    for i, still in frozen:
+        if episodes and episodes[-1].last_cycle == i - 1:
+            episodes[-1] = replace(episodes[-1], last_cycle=i)
+        else:
+            episodes.append(FrozenEpisode(side, i, i, still))
     return episodes
 
 
