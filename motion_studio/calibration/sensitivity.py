@@ -136,7 +136,8 @@ def plot_spread(spreads: list[OutcomeSpread], path: Path) -> Path:
     colours = {"holds": "tab:green", "marginal": "tab:orange", "differs": "tab:red"}
     fig, ax = plt.subplots(figsize=(9, 0.22 * len(spreads) + 1.5))
     rows = range(len(spreads))
-    ax.barh(list(rows), [s.same_share for s in spreads], color=[colours[s.kind] for s in spreads])
+    # a trace that differs in every replay has a share of 0: a sliver of red keeps it visible
+    ax.barh(list(rows), [max(s.same_share, 0.015) for s in spreads], color=[colours[s.kind] for s in spreads])
     ax.set_yticks(list(rows), [s.trace + (" !" if s.ours != s.real else "") for s in spreads], fontsize=7)
     ax.invert_yaxis()
     ax.set_xlim(0, 1)
