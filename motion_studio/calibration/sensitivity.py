@@ -18,6 +18,9 @@ cores): 44 end as the real run unperturbed; 36 hold, 17 are marginal, 16 differ 
 expected to end as the real run. The 16 that differ are our physics': the forward walks (walk_forward, walk_20m,
 walk_fast_20m, the 13 cm candidate) and the dribbles (3), kick_3m, the 8 m candidate and type 3's long kick, and the
 front stand-up's recording and its starts 1, 2, 3, 6 and 7. The back and side stand-ups' mismatches are marginal.
+The candidates of sim/physics_candidates the same way (unperturbed same / holds / marginal / differs / expected):
+foot_slip 51 / 35 / 18 / 16 / 45.1, body_slip 46 / 31 / 23 / 15 / 44.2, slip_fit_2026-11-29 48 / 40 / 13 / 16 / 47.5:
+foot_slip's lead in the single replay (51 against 44) is the recordings' chance, slip_fit's is partly real.
 """
 
 from __future__ import annotations
