@@ -20,7 +20,7 @@ from functools import lru_cache
 from pathlib import Path
 
 from agent.protocol.constants import CYCLE_S
-from agent.protocol.effectors import JointVelocity, parse_actions, split_joint_commands
+from agent.protocol.effectors import JointVelocity, parse_actions
 from agent.protocol.errors import ProtocolError
 from kinematics.spec import robot_spec
 from motion_studio.calibration.agreement import Replay
@@ -146,13 +146,8 @@ def _commanded_rad_s(reply: bytes | None) -> dict[str, float]:
     if not reply:
         return {}
     perceptor = _perceptor_of()
-    text = reply.decode("ascii", "replace")
-    split = split_joint_commands(text)
-    if split is not None:
-        names, values, _ = split
-        return {perceptor[n]: v for n, v in zip(names, values) if n in perceptor}
     try:
-        actions = parse_actions(text)
+        actions = parse_actions(reply)   # the usual all-joints answer takes its fast path
     except ProtocolError:
         return {}
     return {perceptor[a.effector]: a.velocity_rad_s for a in actions
