@@ -27,7 +27,6 @@ from __future__ import annotations
 
 import hashlib
 import random
-from collections.abc import Callable
 from dataclasses import asdict, dataclass, replace
 from pathlib import Path
 from typing import Any
@@ -83,8 +82,7 @@ class OutcomeSpread:
 
 
 def outcome_spread(fixture: Fixture, physics: PhysicsParams | None = None, replays: int = REPLAYS,
-                   sd_rad_s: float = SD_RAD_S, seed: int = 0,
-                   on_replay: Callable[[], None] | None = None) -> OutcomeSpread | None:
+                   sd_rad_s: float = SD_RAD_S, seed: int = 0) -> OutcomeSpread | None:
     """Replay ``fixture`` once as recorded and ``replays`` times perturbed (seeds ``seed``..); None for a scripted
     trace (no real outcome)."""
     base = Replay(fixture, replay_states(fixture, physics))
@@ -98,8 +96,6 @@ def outcome_spread(fixture: Fixture, physics: PhysicsParams | None = None, repla
         result = outcomes(replay)
         assert result is not None   # the same truth as the unperturbed replay
         perturbed.append(result[1])
-        if on_replay is not None:
-            on_replay()
     return OutcomeSpread(fixture.name, ended[0], ended[1], tuple(perturbed))
 
 
