@@ -14,8 +14,8 @@ Trials (each on a fresh simulator; the robot first stands in the walk stance, mo
   seeded push in a random direction; the clock starts when it has fallen (REFERENCE §8.1 criterion).
 
 Time to stand = from the lay-down (or the fall) to the first cycle from which the robot stands for
-``HOLD_S`` (torso centre above ``STAND_TORSO_Z_M``, up axis z above ``STAND_UP_Z``, a foot on the ground: a
-robot knocked over while walking walks on once it is up);
+``HOLD_S`` (torso centre above ``STAND_TORSO_Z_M``, up axis z above ``STAND_UP_Z``, a foot on the ground but for
+flight cycles of at most ``FEET_OFF_GAP_CYCLES``: a robot knocked over while walking walks on once it is up);
 detection by the agent counts, since a robot in a match must notice its fall too. A success is a stand
 within ``TARGET_S``; trials run until ``LIMIT_S`` so that slow recoveries (retries) are still measured.
 
@@ -59,10 +59,15 @@ _PREPOSE_JOINTS = {"hip_pitch": ("llj3", "rlj3", 1), "knee": ("llj4", "rlj4", 1)
                    "shoulder_roll": ("laj2", "raj2", -1)}
 #: Push that knocks a standing / walking robot over: horizontal torso speed range [m/s].
 KNOCK_M_S = (0.9, 1.5)
-#: Standing: torso centre above this [m], up axis z above this, both feet touching, for HOLD_S.
+#: Standing: torso centre above this [m], up axis z above this, a foot touching, for HOLD_S.
 STAND_TORSO_Z_M = 0.28
 STAND_UP_Z = 0.85
 HOLD_S = 1.0
+#: Both feet off the ground for at most this many cycles in a row do not end the hold [cycles]. Why: a robot that
+#: walks on once it is up (a push while walking) has flight cycles, as the real walk has one every stride; counted
+#: as "not standing", they restarted the hold 0.3-1.3 s after a robot had stood up and walked (measured 2026-11-30,
+#: type 0, pushed while walking: up at 2.14 s, clocked at 3.44 s after the walk's flight cycles at 3.10 and 3.42 s).
+FEET_OFF_GAP_CYCLES = 3
 #: Success = standing within this time [s] (issue 6); a trial is cut at LIMIT_S.
 TARGET_S = 3.0
 LIMIT_S = 8.0
@@ -104,9 +109,9 @@ class Trial:
         return self.time_s is not None and self.time_s <= TARGET_S
 
 
-def standing(truth: Truth) -> bool:
-    """The robot stands on its feet (stricter than the §8.1 'not fallen')."""
-    return truth.torso_m[2] > STAND_TORSO_Z_M and truth.up_z > STAND_UP_Z and not truth.feet_off_ground
+def upright(truth: Truth) -> bool:
+    """Torso high and upright (stricter than the §8.1 'not fallen'); `_clock` adds the feet on the ground."""
+    return truth.torso_m[2] > STAND_TORSO_Z_M and truth.up_z > STAND_UP_Z
 
 
 def _clock(scenario: Scenario, trial: Trial) -> Trial:
@@ -114,6 +119,7 @@ def _clock(scenario: Scenario, trial: Trial) -> Trial:
     hold = round(HOLD_S / CYCLE_S)
     limit = round(LIMIT_S / CYCLE_S)
     run_start: int | None = None
+    feet_off_run = 0   # cycles in a row with both feet off the ground
     from sim.rules.self_collision import colliding_pairs
 
     for cycle in range(limit + hold):
@@ -123,7 +129,8 @@ def _clock(scenario: Scenario, trial: Trial) -> Trial:
             trial.self_collisions += 1
         if cycle % TRACE_EVERY == 0 and cycle <= limit:
             trial.torso_z_m.append(round(truth.torso_m[2], 3))
-        if standing(truth):
+        feet_off_run = feet_off_run + 1 if truth.feet_off_ground else 0
+        if upright(truth) and feet_off_run <= FEET_OFF_GAP_CYCLES:
             run_start = cycle if run_start is None else run_start
             if cycle - run_start + 1 >= hold:
                 trial.time_s = round(run_start * CYCLE_S, 2)
