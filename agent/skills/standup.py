@@ -21,7 +21,7 @@ Thresholds (numbers, not tuned curves):
   front stand-up (on our simulator it stands from a front lie turned up to 75 deg about the long axis, the
   back one only up to about 30 deg), one on its side otherwise first plays ``roll_to_back`` and the back
   stand-up as soon as the roll ends (``STAND_UP_AT_ONCE_AFTER_ROLL``), one on its back first plays
-  ``lie_flat`` (legs and arms straight; robot types 0 and 2) and comes to rest
+  ``lie_flat`` (legs and arms straight; robot types 0-3) and comes to rest
   again: from other back lies the back stand-up often rose to 0.25 m and fell back, at every retry;
 * success: an upright torso on loaded feet for RECOVERY_CYCLES after the motion; a robot not upright within
   CHECK_TIMEOUT_CYCLES (or lying again) tries again.
@@ -88,10 +88,11 @@ SIDE_ROLL_MOTION = "roll_to_back"
 #: from). Measured on the stand-up benchmark (motions/params/standup.toml [lie_flat]): type 0's back lies standing
 #: within 8 s 12 -> 20 of 20, median time to stand 2.46 -> 3.25 s.
 FLAT_MOTION = "lie_flat"
-#: Robot types whose back stand-up starts from lie_flat: 0 and 2 (which plays type 0's stand-ups). Type 4's own
-#: stand-ups gained nothing from it (back lies standing within 8 s 12 -> 11 of 20, 2.48 -> 3.36 s); types 1 and 3
-#: are not measured.
-FLAT_FIRST_TYPES = frozenset({0, 2})
+#: Robot types whose back stand-up starts from lie_flat: 0, 2 (which plays type 0's stand-ups), 1 and 3. Types 1 and
+#: 3 since 2026-11-30, with the 6 rad/s lie_flat (standup.toml [lie_flat]): scripted falls onto the back, real
+#: rcssserver3d, 20 starts each, within 3 s type 1 10 -> 20 (stood at all 12 -> 20), type 3 18 -> 20; ours 16 -> 17
+#: and 18 -> 18. Type 4's own stand-ups lose by it (real 18 -> 20 within 3 s but 2.22 -> 2.80 s, ours 17 -> 7).
+FLAT_FIRST_TYPES = frozenset({0, 1, 2, 3})
 #: Motions played before a stand-up; after them the side is read again (after the roll: see below).
 PREPARING_MOTIONS = (SIDE_ROLL_MOTION, FLAT_MOTION)
 #: After ``roll_to_back`` the back stand-up starts at once, without waiting for the robot to rest and reading the
