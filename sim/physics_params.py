@@ -309,6 +309,15 @@ sessions), benchmarks/bench_sim.py.
   feet hop: 0 N on both from 0.06 s); swing feet meeting the field through their drifted twins at 1-3 mm
   (``swing_drift_ground_m``; the twins then carry the stance, the torso stands 2-4 mm above the real one, and the
   FRP, which reads the originals only, shows 0 N), with ``joint_slack_erp`` 0.3 / 0.4 (less drift) as well.
+  Why the lag adds up (2026-11-30, ``--cycles 1.0:2.2 --joints llj3``): the real hip is 1.16-1.18 deg behind its
+  course after each left landing and back on it two cycles later, because the real agent, closed loop, commanded
+  the lag back; replayed open loop, our hip has no lag to make up and is driven those 1.1 deg past its course at
+  every left landing (ours - real at the same phase of successive strides: -0.6, -1.9, -3.0, -4.0 deg).
+  Tried 2026-11-30 (a scratch patch, not kept): the feet's own ground geoms moved by the vertical part of their
+  drift, all of it or half (the real stance foot's centre sits 2-6 mm below its joint angles): our walking torso
+  then stands 0.1-3 mm above the real one instead of 1-7 mm below, but the landings keep their timing (the right
+  foot a cycle after the real one, 9.5 N left on the lifting foot, no flight cycle) and the replay falls sooner,
+  at 4.26 / 3.08 s (4.78 without).
 * **Force-dependent slip at SimSpark's own value on every robot box (measured 2026-11-29, not kept).** With body and
   feet at 5e-3 m/s per N (rsg/agent/nao/contactjointhandler.rsg) the real front stand-up's open-loop replays 2 and
   3 stand (defaults and slip_fit_2026-11-29: fall forward out of the crouch) and ours' loaded joints lag as the real
