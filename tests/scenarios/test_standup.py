@@ -8,11 +8,14 @@ with type 0's."""
 from __future__ import annotations
 
 import math
+import random
 
 import pytest
 
+import agent.skills.standup as standup_skill
 from agent.skills.base import PlayMotion
 from motion_studio.scenarios import Scenario, Truth
+from motion_studio.skill_bench.standup import lying_trial
 
 #: Bound on the time to stand: one stand-up takes about 3 s (the benchmark measures the 3 s target), and
 #: a failed first attempt may be followed by a retry.
@@ -138,3 +141,14 @@ def test_type_4_goes_into_its_own_back_stand_up_without_lying_flat_first():
     assert _time_to_stand(scenario) is not None
     assert scenario.behavior.standup.sides == ["back"]
     assert scenario.behavior.motion.completed["lie_flat"] == 0
+
+
+def test_a_failed_back_stand_up_is_retried_from_the_flat_pose(monkeypatch: pytest.MonkeyPatch):
+    """Type 4 starts its own back stand-up without lie_flat; after a failed attempt it lies flat first
+    (agent.skills.standup.FLAT_BEFORE_RETRY). In this seeded back lie of the stand-up benchmark its first attempt
+    rises to 0.25 m and falls back; the retry from the flat pose stands, the same retry from where it fell never."""
+    trial = lying_trial("back", random.Random(27), 4027, robot_type=4)
+    assert trial.attempts == 2 and trial.time_s is not None and trial.time_s < LIMIT_S
+    monkeypatch.setattr(standup_skill, "FLAT_BEFORE_RETRY", False)
+    trial = lying_trial("back", random.Random(27), 4027, robot_type=4)
+    assert trial.time_s is None
