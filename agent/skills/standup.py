@@ -21,7 +21,7 @@ Thresholds (numbers, not tuned curves):
   front stand-up (on our simulator it stands from a front lie turned up to 75 deg about the long axis, the
   back one only up to about 30 deg), one on its side otherwise first plays ``roll_to_back`` and the back
   stand-up as soon as the roll ends (``STAND_UP_AT_ONCE_AFTER_ROLL``), one on its back first plays
-  ``lie_flat`` (legs and arms straight; robot types 0-3) and comes to rest
+  ``lie_flat`` (legs and arms straight; robot types 0-3, and every type before a retry) and comes to rest
   again: from other back lies the back stand-up often rose to 0.25 m and fell back, at every retry;
 * success: an upright torso on loaded feet for RECOVERY_CYCLES after the motion; a robot not upright within
   CHECK_TIMEOUT_CYCLES (or lying again) tries again.
