@@ -123,24 +123,17 @@ def test_a_robot_of_our_other_types_laid_down_stands_up(robot_type, side, yaw_de
     assert not any(t.fallen for t in scenario.run(25))
 
 
-@pytest.mark.parametrize("robot_type", [1, 3])
-def test_a_robot_of_the_long_legged_types_lays_itself_flat_before_its_back_stand_up(robot_type):
+@pytest.mark.parametrize("robot_type,flat_first", [(1, True), (3, True), (4, False)])
+def test_which_types_lay_themselves_flat_before_their_first_back_stand_up(robot_type, flat_first):
     """Types 1 and 3 play lie_flat first, as types 0 and 2 do (agent.skills.standup.FLAT_FIRST_TYPES): on the real
-    server their back stand-ups after scripted falls stood 12 and 20 of 20 without it, 20 and 20 with it."""
+    server their back stand-ups after scripted falls stood 12 and 20 of 20 without it, 20 and 20 with it. Type 4
+    goes into its own back stand-up at once (with lie_flat first: real 2.22 -> 2.80 s, ours 17 -> 7 of 20)."""
     scenario = _standing_robot(seed=1, robot_type=robot_type)
     scenario.lay_down("back", 30.0)
     assert all(t.fallen for t in scenario.run(10))
     assert _time_to_stand(scenario) is not None, f"type {robot_type} still not standing {LIMIT_S} s after the lay-down"
-    assert scenario.behavior.motion.completed["lie_flat"] == 1
     assert scenario.behavior.standup.sides == ["back"]
-
-
-def test_type_4_goes_into_its_own_back_stand_up_without_lying_flat_first():
-    scenario = _standing_robot(seed=1, robot_type=4)
-    scenario.lay_down("back", 30.0)
-    assert _time_to_stand(scenario) is not None
-    assert scenario.behavior.standup.sides == ["back"]
-    assert scenario.behavior.motion.completed["lie_flat"] == 0
+    assert scenario.behavior.motion.completed["lie_flat"] == (1 if flat_first else 0)
 
 
 def test_a_failed_back_stand_up_is_retried_from_the_flat_pose(monkeypatch: pytest.MonkeyPatch):
