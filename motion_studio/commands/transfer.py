@@ -42,6 +42,8 @@ def transfer(
     motions: Annotated[str, typer.Option(
         help="git revision of the motions played live (default HEAD: the committed motions); 'worktree' = the "
              "files as they are now")] = "HEAD",
+    robot_type: Annotated[int, typer.Option("--type", min=0, max=4, help="robot type (0-4) that plays every case, "
+                                           "with its own motions (fixtures named <case>_type<N>)")] = 0,
     replay_only: Annotated[bool, typer.Option("--replay", help="replay the fixtures even if the real server is "
                                                                "built")] = False,
     real_server_dir: Annotated[Optional[Path], typer.Option(
@@ -72,7 +74,7 @@ def transfer(
         _fail("--record needs the real server (" + ("--replay given" if replay_only else paths.build_hint()) + ")")
     if not live and not fixtures.is_dir():
         _fail(f"no fixture folder {fixtures}")
-    cases = transfer_room.plan(starts, seed, case)
+    cases = transfer_room.plan(starts, seed, case, robot_type)
     out.mkdir(parents=True, exist_ok=True)
     logging.getLogger("sim").setLevel(logging.WARNING)  # each run's play-mode changes would bury the progress
 
@@ -98,11 +100,13 @@ def transfer(
                                 selected=case or None)
     what = ("live: rcssserver3d 0.7.3 and ours side by side" if live else
             "replay: recorded real runs, their commands replayed open loop on ours")
-    typer.echo(transfer_report.table(rows, f"transfer ({what}; code {code}; motions {result.motions})"))
+    typer.echo(transfer_report.table(rows, f"transfer ({what}; robot type {robot_type}; code {code}; motions "
+                                           f"{result.motions})"))
     for note in result.notes:
         typer.echo(f"note: {note}")
     plots = transfer_report.plot(result.pairs, rows, out)
-    summary = transfer_report.summary(result, rows, code=code, starts=starts, seed=seed, wall_s=wall_s, plots=plots)
+    summary = transfer_report.summary(result, rows, code=code, starts=starts, seed=seed, wall_s=wall_s, plots=plots,
+                                      robot_type=robot_type)
     (out / "transfer.json").write_text(json.dumps(summary, indent=1) + "\n")
     typer.echo(f"{len(result.pairs)} runs in {wall_s:.0f} s; figures {out / 'transfer.json'}, plots in {out}")
     if not live:

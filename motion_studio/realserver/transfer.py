@@ -7,7 +7,8 @@ and TurnBy(90)'s total turn [deg]; kick distance with the ball on the motion's s
 time to stand, from the back and the front, over N lying starts (start 0 is the case as shipped, the others vary
 the fall script's speed and stop and the settle time, seeded); falls on a 20 m forward walk; the torso height
 standing. Stood up = the torso centre above 0.30 m for 1 s (measures.stood_index); the time to stand runs from
-the end of the fall script (the agent takes over) to the start of that second.
+the end of the fall script (the agent takes over) to the start of that second. Every case is played by one robot
+type (``plan``'s ``robot_type``) with its own motions; a type's recorded runs are named ``<case>_type<N>``.
 """
 
 from __future__ import annotations
@@ -80,8 +81,16 @@ def vary_fall(case: Case, start: int, seed: int) -> Case:
 
 
 def run_name(case: Case) -> str:
-    """The run's name (and its fixture's): the case, with ``_start<k>`` for a varied lying start."""
+    """The run's name in the figures and the table (one transfer run plays one robot type): the case, with
+    ``_start<k>`` for a varied lying start."""
     return f"{case.name}_start{case.start}" if case.start else case.name
+
+
+def fixture_name(case: Case) -> str:
+    """The name of the case's recorded real run: ``run_name`` with ``_type<N>`` after the case's name for robot
+    types other than 0 (as ``motion-studio real skills --type N --fixture`` names its recordings)."""
+    typed = f"{case.name}_type{case.robot_type}" if case.robot_type else case.name
+    return f"{typed}_start{case.start}" if case.start else typed
 
 
 def _every_case() -> list[Case]:
@@ -89,11 +98,13 @@ def _every_case() -> list[Case]:
     return [*CASES.values(), *WALK_20M_CASES]
 
 
-def plan(starts: int, seed: int, names: list[str] | None = None) -> list[Case]:
-    """Every shipped case (stand-ups once per lying start) and the 20 m walk; ``names`` picks cases."""
+def plan(starts: int, seed: int, names: list[str] | None = None, robot_type: int = 0) -> list[Case]:
+    """Every shipped case (stand-ups once per lying start) and the 20 m walk, played by a robot of
+    ``robot_type`` with its own motions; ``names`` picks cases. The lying starts vary alike for every type."""
     cases = _every_case()
     if names:
         cases = [case for case in cases if case.name in names]
+    cases = [replace(case, robot_type=robot_type) for case in cases]
     out: list[Case] = []
     for case in cases:
         out += [vary_fall(case, k, seed) for k in range(starts)] if case.name in STANDUP_CASES else [case]
@@ -134,7 +145,7 @@ def run_live(cases: list[Case], motions: MotionSource, scripts: Path, workdir: P
             errors.append(f"{run_name(case)}: real run failed ({error}); server log {workdir}")
             continue
         if record is not None:
-            write_fixture(lines, fixture_path(record, run_name(case)))
+            write_fixture(lines, fixture_path(record, fixture_name(case)))
         yield Pair(case, real, run_sim(case, motions))
 
 
@@ -151,7 +162,8 @@ def case_of(fixture: Fixture) -> Case:
     if base is None:
         raise FixtureError(fixture.path, 1, f"unknown case {meta['case']!r} in the meta line")
     base = with_dribble_config(base, meta.get("dribble_config", {}))   # a dribble recorded with --dribble settings
-    return replace(base, settle_cycles=fixture.skill_cycle - int(meta["move_cycle"]), start=int(meta.get("start", 0)))
+    return replace(base, settle_cycles=fixture.skill_cycle - int(meta["move_cycle"]), start=int(meta.get("start", 0)),
+                   robot_type=int(meta.get("robot_type", 0)))
 
 
 def replay_fixtures(cases: list[Case], folder: Path, scratch: Path,
@@ -166,7 +178,7 @@ def replay_fixtures(cases: list[Case], folder: Path, scratch: Path,
     errors = errors if errors is not None else []
     sources: dict[str, MotionSource | None] = {}
     for done, planned in enumerate(cases):
-        name = run_name(planned)
+        name = fixture_name(planned)
         if progress is not None:
             progress(done, len(cases), name)
         try:
@@ -195,10 +207,11 @@ def replay_fixtures(cases: list[Case], folder: Path, scratch: Path,
         yield pair
 
 
-def missing_starts(starts: int, folder: Path, seed: int) -> dict[str, list[int]]:
-    """Lying starts of each stand-up case with no fixture in ``folder`` (reported once, not as errors)."""
-    return {name: [k for k in range(1, starts)
-                   if not fixture_path(folder, run_name(vary_fall(CASES[name], k, seed))).exists()]
+def missing_starts(starts: int, folder: Path, seed: int, robot_type: int = 0) -> dict[str, list[int]]:
+    """Lying starts of each stand-up case (played by ``robot_type``) with no fixture in ``folder`` (reported
+    once, not as errors)."""
+    return {name: [k for k in range(1, starts) if not fixture_path(
+                folder, fixture_name(vary_fall(replace(CASES[name], robot_type=robot_type), k, seed))).exists()]
             for name in STANDUP_CASES}
 
 
@@ -337,17 +350,36 @@ def measure(mode: str, cases: list[Case], *, motions_revision: str, fixtures: Pa
     if mode == "live":
         motions = motion_source(motions_revision, scratch / "motions")
         played = motions.revision
+        cases, skipped = playable(cases, motions)
+        notes += skipped
         pairs = list(run_live(cases, motions, scripts, workdir, record, progress, errors))
     else:
         # a varied lying start is replayed only where it was recorded (the missing ones are one note below)
-        cases = [case for case in cases if not case.start or fixture_path(fixtures, run_name(case)).exists()]
+        cases = [case for case in cases if not case.start or fixture_path(fixtures, fixture_name(case)).exists()]
         pairs = list(replay_fixtures(cases, fixtures, scratch, progress, errors))
-        for name, missing in missing_starts(starts, fixtures, seed).items():
+        robot_type = cases[0].robot_type if cases else 0
+        for name, missing in missing_starts(starts, fixtures, seed, robot_type).items():
             if missing and any(case.name == name for case in cases):
+                pattern = fixture_name(replace(CASES[name], robot_type=robot_type)) + "_start<k>"
                 notes.append(f"{name}: no fixture for lying starts {_ranges(missing)} "
-                             f"({fixture_path(fixtures, name + '_start<k>')}; record them with --record)")
+                             f"({fixture_path(fixtures, pattern)}; record them with --record)")
     figures = {run_name(pair.case): run_figures(pair) for pair in pairs}
     return Transfer(mode, pairs, figures, errors, notes, played)
+
+
+def playable(cases: list[Case], motions: MotionSource) -> tuple[list[Case], list[str]]:
+    """The cases whose motion their robot type plays (``motions/files/robot_types.toml`` withholds some), and a
+    note per case left out."""
+    kept, notes = [], []
+    libraries: dict[int, set[str]] = {}
+    for case in cases:
+        names = libraries.setdefault(case.robot_type, set(motions.library(case.robot_type).names))
+        if case.motion is not None and case.motion not in names:
+            if not any(note.startswith(f"{case.name}:") for note in notes):
+                notes.append(f"{case.name}: not run (robot type {case.robot_type} does not play {case.motion!r})")
+            continue
+        kept.append(case)
+    return kept, notes
 
 
 def _ranges(numbers: list[int]) -> str:

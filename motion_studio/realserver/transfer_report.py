@@ -162,9 +162,10 @@ def table(rows_: list[Row], title: str) -> str:
 
 
 def summary(result: Transfer, rows_: list[Row], *, code: str, starts: int, seed: int, wall_s: float,
-            plots: list[Path]) -> dict:
+            plots: list[Path], robot_type: int = 0) -> dict:
     """Everything a transfer run measured, JSON-ready (transfer.json)."""
-    return {"mode": result.mode, "code": code, "motions": result.motions, "starts": starts, "seed": seed,
+    return {"mode": result.mode, "code": code, "motions": result.motions, "robot_type": robot_type,
+            "starts": starts, "seed": seed,
             "wall_s": round(wall_s, 1), "rows": [row.as_dict() for row in rows_], "runs": result.figures,
             "run_notes": {run_name(pair.case): pair.notes for pair in result.pairs if pair.notes},
             "errors": result.errors, "notes": result.notes, "plots": [str(path) for path in plots]}

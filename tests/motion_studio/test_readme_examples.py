@@ -63,6 +63,7 @@ HOW = {
     "transfer": PARSE,
     "transfer --record out/fix": PARSE,
     "transfer --case walk_20m --case walk_fast_20m": PARSE,   # needs the real server for its figures
+    "transfer --type 3 --starts 5": PARSE,   # needs the real server (or type 3 fixtures) for its figures
     "real skills turn_left --json out/f.json": PARSE,
     "real skills walk_forward kick dribble --type 4": PARSE,
     "real skills kick_1m kick_2m kick_3m kick_4m": PARSE,

@@ -223,12 +223,57 @@ def test_transfer_names_the_corrupt_fixture_and_goes_on(tmp_path: Path) -> None:
     assert (out / "transfer_ratios.png").stat().st_size > 10_000
 
 
+# ---- robot types ----------------------------------------------------------------------------------------------
+def test_a_robot_type_s_runs_are_its_fixtures_and_its_lying_starts_are_type_0_s() -> None:
+    cases = {transfer.run_name(case): case for case in transfer.plan(3, 7, ["kick_strong", "standup_front"], 2)}
+    assert set(cases) == {"kick_strong", "standup_front", "standup_front_start1", "standup_front_start2"}
+    assert {case.robot_type for case in cases.values()} == {2}
+    assert transfer.fixture_name(cases["kick_strong"]) == "kick_strong_type2"   # as real skills --type 2 names it
+    assert transfer.fixture_name(cases["standup_front_start2"]) == "standup_front_type2_start2"
+    type0 = {transfer.run_name(case): case for case in transfer.plan(3, 7, ["standup_front"])}
+    assert transfer.fixture_name(type0["standup_front_start2"]) == "standup_front_start2"
+    for name in ("standup_front_start1", "standup_front_start2"):   # every type falls the same scripted way
+        assert cases[name].fall_speed_scale == type0[name].fall_speed_scale != 1.0
+        assert cases[name].fall_stop_shift_cycles == type0[name].fall_stop_shift_cycles
+        assert cases[name].settle_cycles == type0[name].settle_cycles
+
+
+def test_a_robot_type_s_withheld_motions_are_not_run_and_say_so(tmp_path: Path) -> None:
+    from motion_studio.realserver.cases import MotionSource
+
+    files = tmp_path / "files"
+    shutil.copytree(Path(__file__).parents[2] / "motions" / "files", files)
+    (files / "robot_types.toml").write_text('[type2]\nwithheld = ["kick_strong"]\n')
+    cases, notes = transfer.playable(transfer.plan(1, 0, ["kick", "kick_strong", "stand"], 2),
+                                     MotionSource(tmp_path, "test"))
+    assert [case.name for case in cases] == ["stand", "kick"]
+    assert notes == ["kick_strong: not run (robot type 2 does not play 'kick_strong')"]
+    kept, notes = transfer.playable(transfer.plan(1, 0, ["kick_strong"], 1), MotionSource(tmp_path, "test"))
+    assert [case.name for case in kept] == ["kick_strong"] and notes == []
+
+
+def test_transfer_type_1_replays_type_1_s_recorded_long_kick(tmp_path: Path) -> None:
+    # real_0.7.3_skill_kick_strong_type1 was recorded by motion-studio real skills kick_strong --type 1 --fixture
+    # (2026-11-28): type 1's own long kick moved the real ball 5.77 m; its commands replayed open loop on ours.
+    out = tmp_path / "out"
+    result = _invoke("--type", "1", "--case", "kick_strong", "--case", "stand", "--replay", "--out", str(out))
+    assert result.exit_code == 0, result.output
+    assert "robot type 1" in result.output
+    assert f"{fixture_path(FIXTURES, 'stand_type1')}: no such fixture file" in result.output   # never recorded
+    summary = json.loads((out / "transfer.json").read_text())
+    assert summary["robot_type"] == 1 and list(summary["runs"]) == ["kick_strong"]
+    row = next(r for r in summary["rows"] if r["figure"].startswith("kick_strong: distance"))
+    assert row["real"] == pytest.approx(5.77, abs=0.02)
+    assert 0.85 < row["ratio"] < 1.1   # measured 0.97 (ours 5.60 m)
+    assert "real_0.7.3_skill_kick_strong_type1" in summary["run_notes"]["kick_strong"][0]
+
+
 # ---- the command -------------------------------------------------------------------------------------------------
 def test_help_lists_the_options_with_their_defaults() -> None:
     result = _invoke("--help")
     assert result.exit_code == 0
-    for option in ("--starts", "--seed", "--out", "--record", "--fixtures", "--case", "--motions", "--replay",
-                   "--real-server-dir"):
+    for option in ("--starts", "--seed", "--out", "--record", "--fixtures", "--case", "--motions", "--type",
+                   "--replay", "--real-server-dir"):
         assert option in result.output
     assert "10" in result.output and "out/transfer" in result.output
 
@@ -237,6 +282,7 @@ def test_help_lists_the_options_with_their_defaults() -> None:
     (["--starts", "0"], "'--starts': Input should be greater than or equal to 1; expected 1 to 1000"),
     (["--case", "fly", "--replay"], "unknown case fly; known: stand"),
     (["--replay", "--record", "x"], "--record needs the real server"),
+    (["--type", "5", "--replay"], "'--type': Input should be less than or equal to 4"),
 ])
 def test_bad_options_are_one_line_and_exit_2(args: list[str], message: str, capsys) -> None:
     from motion_studio.cli_errors import run_app
