@@ -6,6 +6,16 @@ arbitrary (where the filter started); yaw comes from the gyro alone, so it drift
 accelerometer's "up" direction, Mahony style: ω_corrected = ω + k·(up_measured × up_estimated), applied only
 when |a| is within ``ACC_GATE`` of g, because walking impacts and beams (|a| = 29.42 on the init cycle in
 the real-server sample) are not gravity.
+
+A single gravity-sized reading is not trusted to set the tilt: a robot dropped by a trainer move bounces, and
+one bounce can read g the wrong way up. On the real rcssserver3d a type-3 robot moved to a torso height of
+0.40 m (its legs are longer: it stands at 0.44 m) read 29.42, 49.16, 0.03, 19.55, 0.03, -0.03 and then
+(0.00, 0.02, -9.88) m/s²; the filter took that for its start, believed the robot upside down, and since the
+correction ``up_measured × up_estimated`` vanishes for opposite vectors, stayed so: the agent played a stand-up
+from standing and fell (``motion-studio transfer --type 3``, the 20 m walks, 2026-11-30). So the tilt is set from
+``SETTLE_READINGS`` consecutive gated readings that agree within ``AGREE_DEG``, and re-anchored to such readings
+whenever the estimate is more than ``REANCHOR_DEG`` off them while the gyro is quiet (at rest the accelerometer
+is gravity; the gyro-only estimate can be wrong by any angle).
 """
 
 from __future__ import annotations
@@ -21,6 +31,14 @@ GRAVITY_M_S2 = 9.81
 ACC_GATE = 0.15
 #: Correction gain k [1/s]: a tilt error decays with a time constant of about 1/k.
 DEFAULT_GAIN_PER_S = 2.0
+#: Consecutive gated readings that must agree before they set (or re-anchor) the tilt: 0.1 s at one per cycle.
+SETTLE_READINGS = 5
+#: ... within this angle of their mean direction [deg].
+AGREE_DEG = 10.0
+#: ... with the gyro below this on every one of them [deg/s] (re-anchoring only).
+QUIET_GYRO_DEG_S = 30.0
+#: The estimate is re-anchored to agreeing readings that are this far from its up direction [deg].
+REANCHOR_DEG = 45.0
 
 
 @dataclass(frozen=True, slots=True)
@@ -59,7 +77,9 @@ class OrientationFilter:
         self.rotation: mat3.Matrix = mat3.IDENTITY
         """Torso -> gravity-aligned frame (yaw origin arbitrary)."""
         self.initialised = False
-        """True once a gravity-like accelerometer reading has set the tilt."""
+        """True once ``SETTLE_READINGS`` agreeing gravity-like accelerometer readings have set the tilt."""
+        self._streak: list[tuple[mat3.Vector, bool]] = []
+        """The last consecutive gated readings (unit up direction, gyro quiet), newest last."""
 
     def update(self, gyro_deg_s: mat3.Vector | None, acc_m_s2: mat3.Vector | None, dt_s: float = CYCLE_S) -> None:
         """Advance by one cycle.
@@ -74,12 +94,14 @@ class OrientationFilter:
             norm = math.sqrt(sum(a * a for a in acc_m_s2))
             if abs(norm - GRAVITY_M_S2) < ACC_GATE * GRAVITY_M_S2:
                 up_meas = (acc_m_s2[0] / norm, acc_m_s2[1] / norm, acc_m_s2[2] / norm)
-        if up_meas is not None and not self.initialised:
-            self.rotation = tilt_matrix(tilt_from_up(up_meas))
+        quiet = gyro_deg_s is None or math.sqrt(sum(w * w for w in gyro_deg_s)) < QUIET_GYRO_DEG_S
+        settled = self._settled(up_meas, quiet)
+        if settled is not None and (not self.initialised or _angle_deg(settled, self.rotation[2]) > REANCHOR_DEG):
+            self.rotation = mat3.matmul(mat3.rotation((0.0, 0.0, 1.0), self.yaw_rad),
+                                        tilt_matrix(tilt_from_up(settled)))
             self.initialised = True
-            up_meas = None  # already exact; the gyro still turns it below
         wx, wy, wz = (math.radians(w) for w in gyro_deg_s) if gyro_deg_s is not None else (0.0, 0.0, 0.0)
-        if up_meas is not None:
+        if up_meas is not None and self.initialised:  # before that, single readings are not trusted
             up_est = self.rotation[2]  # world z in torso axes = third row of R
             cx, cy, cz = mat3.cross(up_meas, up_est)
             wx, wy, wz = wx + self.gain_per_s * cx, wy + self.gain_per_s * cy, wz + self.gain_per_s * cz
@@ -87,6 +109,22 @@ class OrientationFilter:
         if angle > 0.0:
             step = mat3.rotation((wx * dt_s / angle, wy * dt_s / angle, wz * dt_s / angle), angle)
             self.rotation = mat3.orthonormalize(mat3.matmul(self.rotation, step))
+
+    def _settled(self, up_meas: mat3.Vector | None, quiet: bool) -> mat3.Vector | None:
+        """The mean up direction of the last ``SETTLE_READINGS`` consecutive gated readings when they agree
+        within ``AGREE_DEG`` (and, once initialised, the gyro was quiet on each), else None."""
+        if up_meas is None:
+            self._streak.clear()
+            return None
+        self._streak = [*self._streak[1 - SETTLE_READINGS:], (up_meas, quiet)]
+        if len(self._streak) < SETTLE_READINGS or (self.initialised and not all(q for _, q in self._streak)):
+            return None
+        mean = tuple(sum(up[i] for up, _ in self._streak) for i in range(3))
+        norm = math.sqrt(sum(c * c for c in mean)) or 1.0
+        mean = (mean[0] / norm, mean[1] / norm, mean[2] / norm)
+        if any(_angle_deg(up, mean) > AGREE_DEG for up, _ in self._streak):
+            return None
+        return mean
 
     @property
     def yaw_rad(self) -> float:
@@ -108,3 +146,9 @@ class OrientationFilter:
     def up_z(self) -> float:
         """z of the torso's up axis in the gravity frame (1 upright, < 0.6 counts as fallen, REFERENCE §8.1)."""
         return self.rotation[2][2]
+
+
+def _angle_deg(a: mat3.Vector, b: mat3.Vector) -> float:
+    """Angle between two unit vectors [deg]."""
+    dot = a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+    return math.degrees(math.acos(max(-1.0, min(1.0, dot))))
