@@ -26,9 +26,10 @@ retimed ones stood it up after the scripted fall onto its back in 4 of 10 real s
 has the figures); it plays the shared ``roll_to_back`` (its own 300 ms three-phase roll until 2026-11-28). Type 3
 keeps the three-phase roll the shared file had before that day (a ``[roll_to_back]`` of its own: with the one-keyframe
 roll its side lies stood on ours 4 of 10; its provenance). Type 2's
-back stand-up is its own retime of ``standup.toml``'s from before 2026-11-28 (type 0's legs, but type 0's retimed
-one stood a type-2 robot up within 3 s after 4 of 20 real scripted falls onto its back, the one before after 18, its
-own retime after 20; its header and provenance have the figures). Types 1
+back stand-up is ``standup.toml``'s again since 2026-11-30 (a copy of the section): from 2026-11-28 it played a retime
+of its own, because type 0's retimed one stood a type-2 robot up within 3 s after 4 of 20 real scripted falls onto its
+back; with every type lying flat first it stands it up after 20 of 20, 0.35 s sooner than that retime (its header and
+provenance have the figures). Types 1
 and 3 (longer legs): with type 0's
 parameters neither got up from the front on either server (type 3: from the front on the real server only
 after a retry, from the back on neither). What each section gave is in its provenance and measured keys.
