@@ -34,6 +34,12 @@ sessions), benchmarks/bench_sim.py.
   driven 12 deg past its -25 deg stop in one step (the joint inside the stop at the step's start, so no stop row,
   the motor overpowered against a +1.78 rad/s command) and bounced there for three cycles; ours went past a cycle
   earlier, by 2.7 deg, and came straight back, 12.6 deg ahead of the real hip from then on (ours then falls).
+  With the support leg and recovery retuned on both servers (2026-11-30, kick_strong_8m_real.toml) ours stands,
+  and a second difference shows: the same strike pokes the ball (the foot meets it at 0.87-0.89 m/s, the ball
+  moves 0.1-0.7 m) with the ball at +2 cm on the real server and at -0.5..+0.5 cm on ours, and where both kick
+  it the real foot lofts it (0.5 m up) while ours drives it flat: the foot's path relative to the ball differs
+  by 1.5-2 cm along the kick line on ours, and passes higher on the ball (kick_check from -3 to +4 cm; not
+  traced further).
 * **Contacts.** μ = ∞ in SimSpark (slip only through force-dependent slip and soft ERP/CFM, friction even at
   zero normal force inside ODE's 1 mm surface layer: the real FRP shows 24 N sideways with 0 N normal on a
   lifting foot); here Coulomb μ = 2 at the feet (0.95 on the other body parts, below), condim 3,
