@@ -21,6 +21,7 @@ is gravity; the gyro-only estimate can be wrong by any angle).
 from __future__ import annotations
 
 import math
+from collections import deque
 from dataclasses import dataclass
 
 from agent.world import mat3
@@ -39,6 +40,8 @@ AGREE_DEG = 10.0
 QUIET_GYRO_DEG_S = 30.0
 #: The estimate is re-anchored to agreeing readings that are this far from its up direction [deg].
 REANCHOR_DEG = 45.0
+#: Cosine of REANCHOR_DEG - AGREE_DEG: a newest reading nearer the estimate than that cannot start a re-anchoring.
+_FAR_COS = math.cos(math.radians(REANCHOR_DEG - AGREE_DEG))
 
 
 @dataclass(frozen=True, slots=True)
@@ -78,7 +81,7 @@ class OrientationFilter:
         """Torso -> gravity-aligned frame (yaw origin arbitrary)."""
         self.initialised = False
         """True once ``SETTLE_READINGS`` agreeing gravity-like accelerometer readings have set the tilt."""
-        self._streak: list[tuple[mat3.Vector, bool]] = []
+        self._streak: deque[tuple[mat3.Vector, bool]] = deque(maxlen=SETTLE_READINGS)
         """The last consecutive gated readings (unit up direction, gyro quiet), newest last."""
 
     def update(self, gyro_deg_s: mat3.Vector | None, acc_m_s2: mat3.Vector | None, dt_s: float = CYCLE_S) -> None:
@@ -95,7 +98,12 @@ class OrientationFilter:
             if abs(norm - GRAVITY_M_S2) < ACC_GATE * GRAVITY_M_S2:
                 up_meas = (acc_m_s2[0] / norm, acc_m_s2[1] / norm, acc_m_s2[2] / norm)
         quiet = gyro_deg_s is None or math.sqrt(sum(w * w for w in gyro_deg_s)) < QUIET_GYRO_DEG_S
-        settled = self._settled(up_meas, quiet)
+        self._remember(up_meas, quiet)
+        # Initialised, readings that agree within AGREE_DEG of a mean more than REANCHOR_DEG off the estimate put
+        # the newest one more than REANCHOR_DEG - AGREE_DEG off: below that, no mean is worth computing (this
+        # runs every cycle of every agent).
+        far = up_meas is not None and _dot(up_meas, self.rotation[2]) < _FAR_COS
+        settled = self._settled() if not self.initialised or far else None
         if settled is not None and (not self.initialised or _angle_deg(settled, self.rotation[2]) > REANCHOR_DEG):
             self.rotation = mat3.matmul(mat3.rotation((0.0, 0.0, 1.0), self.yaw_rad),
                                         tilt_matrix(tilt_from_up(settled)))
@@ -110,13 +118,16 @@ class OrientationFilter:
             step = mat3.rotation((wx * dt_s / angle, wy * dt_s / angle, wz * dt_s / angle), angle)
             self.rotation = mat3.orthonormalize(mat3.matmul(self.rotation, step))
 
-    def _settled(self, up_meas: mat3.Vector | None, quiet: bool) -> mat3.Vector | None:
-        """The mean up direction of the last ``SETTLE_READINGS`` consecutive gated readings when they agree
-        within ``AGREE_DEG`` (and, once initialised, the gyro was quiet on each), else None."""
+    def _remember(self, up_meas: mat3.Vector | None, quiet: bool) -> None:
+        """Keep the last ``SETTLE_READINGS`` consecutive gated readings (a reading out of the gate ends them)."""
         if up_meas is None:
             self._streak.clear()
-            return None
-        self._streak = [*self._streak[1 - SETTLE_READINGS:], (up_meas, quiet)]
+        else:
+            self._streak.append((up_meas, quiet))
+
+    def _settled(self) -> mat3.Vector | None:
+        """The mean up direction of the remembered readings when there are ``SETTLE_READINGS`` of them and they
+        agree within ``AGREE_DEG`` (and, once initialised, the gyro was quiet on each), else None."""
         if len(self._streak) < SETTLE_READINGS or (self.initialised and not all(q for _, q in self._streak)):
             return None
         mean = tuple(sum(up[i] for up, _ in self._streak) for i in range(3))
@@ -148,7 +159,10 @@ class OrientationFilter:
         return self.rotation[2][2]
 
 
+def _dot(a: mat3.Vector, b: mat3.Vector) -> float:
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+
+
 def _angle_deg(a: mat3.Vector, b: mat3.Vector) -> float:
     """Angle between two unit vectors [deg]."""
-    dot = a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-    return math.degrees(math.acos(max(-1.0, min(1.0, dot))))
+    return math.degrees(math.acos(max(-1.0, min(1.0, _dot(a, b)))))
