@@ -344,6 +344,15 @@ class MotionSource:
         return default_library(robot_type, self.folder / "files" if self.folder is not None else None,
                                include_withheld=include_withheld)
 
+    def unplayed(self, case: Case, available: MotionLibrary) -> str | None:
+        """Why a robot of ``case.robot_type`` does not play the case's motion (``available``: that type's library,
+        ``library(case.robot_type)``, loaded once by the caller), or None when it does or the case has none."""
+        if case.motion is None or case.motion in available:
+            return None
+        if case.motion in self.library(case.robot_type, include_withheld=True):
+            return f"robot type {case.robot_type} does not play {case.motion!r}: motions/files/robot_types.toml"
+        return f"no motion {case.motion!r} at {self.revision}"
+
     def controller(self, robot_type: int = 0) -> MotionController | None:
         """A motion controller on these motions (None: SkillBehavior's default, the working tree's)."""
         if self.folder is None:

@@ -47,12 +47,9 @@ def check_skills(names: list[str], motions: MotionSource, scripts: Path, out: Pa
     available = motions.library(robot_type)
     for name in names:
         case = with_dribble_config(replace(CASES[name], robot_type=robot_type), dribble_config or {})
-        if case.motion is not None and case.motion not in available:
-            if case.motion in motions.library(robot_type, include_withheld=True):
-                report(f"{name}: skipped (robot type {robot_type} does not play {case.motion!r}: motions/files/"
-                       f"robot_types.toml)")
-            else:
-                report(f"{name}: skipped (no motion {case.motion!r} at {motions.revision})")
+        reason = motions.unplayed(case, available)
+        if reason is not None:
+            report(f"{name}: skipped ({reason})")
             continue
         if replay_sim:  # physics alone: our agent's answers on our simulator, sent to both
             sim_run = run_sim(case, motions)

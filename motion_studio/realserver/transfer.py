@@ -208,11 +208,13 @@ def replay_fixtures(cases: list[Case], folder: Path, scratch: Path,
 
 
 def missing_starts(starts: int, folder: Path, seed: int, robot_type: int = 0) -> dict[str, list[int]]:
-    """Lying starts of each stand-up case (played by ``robot_type``) with no fixture in ``folder`` (reported
-    once, not as errors)."""
-    return {name: [k for k in range(1, starts) if not fixture_path(
-                folder, fixture_name(vary_fall(replace(CASES[name], robot_type=robot_type), k, seed))).exists()]
-            for name in STANDUP_CASES}
+    """Lying starts of each stand-up case (played by ``robot_type``, as ``plan`` varies them) with no fixture in
+    ``folder`` (reported once, not as errors)."""
+    missing: dict[str, list[int]] = {name: [] for name in STANDUP_CASES}
+    for case in plan(starts, seed, list(STANDUP_CASES), robot_type):
+        if case.start and not fixture_path(folder, fixture_name(case)).exists():
+            missing[case.name].append(case.start)
+    return missing
 
 
 # ---- figures ---------------------------------------------------------------------------------------------
@@ -369,17 +371,17 @@ def measure(mode: str, cases: list[Case], *, motions_revision: str, fixtures: Pa
 
 def playable(cases: list[Case], motions: MotionSource) -> tuple[list[Case], list[str]]:
     """The cases whose motion their robot type plays (``motions/files/robot_types.toml`` withholds some), and a
-    note per case left out."""
-    kept, notes = [], []
-    libraries: dict[int, set[str]] = {}
+    note per case left out (``MotionSource.unplayed``)."""
+    kept, notes = [], {}
+    libraries = {}
     for case in cases:
-        names = libraries.setdefault(case.robot_type, set(motions.library(case.robot_type).names))
-        if case.motion is not None and case.motion not in names:
-            if not any(note.startswith(f"{case.name}:") for note in notes):
-                notes.append(f"{case.name}: not run (robot type {case.robot_type} does not play {case.motion!r})")
-            continue
-        kept.append(case)
-    return kept, notes
+        available = libraries.setdefault(case.robot_type, motions.library(case.robot_type))
+        reason = motions.unplayed(case, available)
+        if reason is None:
+            kept.append(case)
+        else:
+            notes.setdefault(case.name, f"{case.name}: not run ({reason})")
+    return kept, list(notes.values())
 
 
 def _ranges(numbers: list[int]) -> str:

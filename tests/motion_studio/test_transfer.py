@@ -247,7 +247,7 @@ def test_a_robot_type_s_withheld_motions_are_not_run_and_say_so(tmp_path: Path) 
     cases, notes = transfer.playable(transfer.plan(1, 0, ["kick", "kick_strong", "stand"], 2),
                                      MotionSource(tmp_path, "test"))
     assert [case.name for case in cases] == ["stand", "kick"]
-    assert notes == ["kick_strong: not run (robot type 2 does not play 'kick_strong')"]
+    assert notes == ["kick_strong: not run (robot type 2 does not play 'kick_strong': motions/files/robot_types.toml)"]
     kept, notes = transfer.playable(transfer.plan(1, 0, ["kick_strong"], 1), MotionSource(tmp_path, "test"))
     assert [case.name for case in kept] == ["kick_strong"] and notes == []
 
