@@ -488,8 +488,9 @@ def test_the_real_13_cm_walk_s_commands_stay_upright_on_ours() -> None:
 
 
 #: A long kick of 8 m found on the real server alone (the first candidate of motions/params/kick_strong_8m_real.toml,
-#: not shipped: ours falls after it; the file now holds its successor), recorded with ``motion-studio real skills kick_strong --motions worktree --fixture`` (2026-11-28): the
-#: real ball flies 0.5 m high, lands 3.7 m on and stops 8.17 m from its spot; the real robot stands.
+#: not shipped: ours falls after it; the file now holds its successor), recorded with ``motion-studio real skills
+#: kick_strong --motions worktree --fixture`` (2026-11-28): the real ball flies 0.5 m high, lands 3.7 m on and stops
+#: 8.17 m from its spot; the real robot stands.
 LONG_KICK_8M = "kick_strong_8m_candidate"
 
 
