@@ -102,18 +102,26 @@ class KickToward(Skill):
         self.target = (float(target_x_m), float(target_y_m))
         self.distance_m = distance_m
         self.strong = strong and distance_m is None
-        self.config = config or KickConfig()
-        if distance_m is not None:  # an accurate kick waits for a placement its table was measured on
-            self.config = replace(self.config, loose_forward_max_m=min(self.config.loose_forward_max_m,
-                                                                       self.config.controlled_loose_forward_max_m))
-        self._fallback_config = self.config
-        """The normal kick's tolerances: a long kick whose narrow window the ball misses kicks the normal kick
-        where that one would kick now (a short kick now beats a long one after more corrections)."""
-        if self.strong:  # the long kick hits well only from its spot to 2 cm beyond
-            self.config = self.config.for_strong_kick()
+        self._base_config = config or KickConfig()
+        self.config = self._fallback_config = self._base_config
+        self._robot_type: int | None = None
+        self._configure(0)
         reach = f" {distance_m:.1f} m" if distance_m is not None else ""
         self.name = f"kick{' strong' if self.strong else ''}{reach} toward ({target_x_m:.1f}, {target_y_m:.1f})"
         self.reset()
+
+    def _configure(self, robot_type: int) -> None:
+        """The tolerances this kick plays with for a robot of ``robot_type`` (its own where it has them,
+        ``KickConfig.for_robot_type``), narrowed for a distance-controlled or a long kick."""
+        self._robot_type = robot_type
+        config = self._base_config.for_robot_type(robot_type)
+        if self.distance_m is not None:  # an accurate kick waits for a placement its table was measured on
+            config = replace(config, loose_forward_max_m=min(config.loose_forward_max_m,
+                                                             config.controlled_loose_forward_max_m))
+        self._fallback_config = config
+        """The normal kick's tolerances: a long kick whose narrow window the ball misses kicks the normal kick
+        where that one would kick now (a short kick now beats a long one after more corrections)."""
+        self.config = config.for_strong_kick() if self.strong else config  # the long kick: its spot to 2 cm on
 
     def reset(self) -> None:
         super().reset()
@@ -182,6 +190,8 @@ class KickToward(Skill):
     # ---- the cycle ------------------------------------------------------------------------------------
     def step(self, world: WorldModel, motion: MotionController) -> MotionRequest:
         report_walk_odometry(world, motion)
+        if self._robot_type != world.robot_type:
+            self._configure(world.robot_type)
         if self._started_s is None:
             self._started_s = world.now_s
         if self.done:

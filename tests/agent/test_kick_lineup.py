@@ -7,8 +7,8 @@ import math
 
 import pytest
 
-from agent.skills.kick_lineup import (KICK_STEP_M, KickConfig, Spot, align, foot_side, plan, plan_with_fallback,
-                                    strides_for)
+from agent.skills.kick_lineup import (KICK_CONFIG_BY_TYPE, KICK_STEP_M, KickConfig, Spot, align, foot_side, plan,
+                                    plan_with_fallback, strides_for)
 
 CONFIG = KickConfig()
 SPOTS = [Spot("kick", 0.118, 0.021), Spot("kick_left", 0.118, -0.021)]
@@ -172,6 +172,30 @@ def test_a_walk_in_that_would_end_on_the_ball_steps_back_first(beyond_m):
     assert (move.kind, move.motion) == ("move", "kick_step_backward")
     after_step = decide((0.118 + beyond_m + 2 * KICK_STEP_M, 0.0))
     assert after_step.kind == "walk_in" and after_step.strides == 1
+
+
+@pytest.mark.parametrize("beyond_m", [0.415, 0.425])
+def test_between_the_one_and_the_two_cycle_walk_in_a_step_back_makes_the_longer_fit(beyond_m):
+    """0.415-0.425 m beyond the spot one cycle (0.333 m) leaves the ball 8-9 cm beyond it, past the loose window's
+    4.1 cm, two (0.441 m) end 1.6-2.6 cm short: a kick step back, then the two-cycle walk-in, rather than a walk-in
+    followed by kick steps (or a back-off that walked in to the same place again, on the real server)."""
+    move = decide((0.118 + beyond_m, 0.0))
+    assert (move.kind, move.motion) == ("move", "kick_step_backward")
+    after_step = decide((0.118 + beyond_m + KICK_STEP_M, 0.0))
+    assert after_step.kind == "walk_in" and after_step.strides == 2
+
+
+def test_a_robot_type_plays_its_own_walk_in_distances_and_windows():
+    type3 = CONFIG.for_robot_type(3)
+    assert type3.walk_in_m(1) == pytest.approx(KICK_CONFIG_BY_TYPE[3]["walk_in_first_m"])
+    assert type3.walk_in_m(1) < CONFIG.walk_in_m(1) - 0.02  # its shorter steps
+    assert type3.loose_forward_max_m < CONFIG.loose_forward_max_m
+    assert type3.heading_tol_deg == CONFIG.heading_tol_deg  # the rest stays
+    assert CONFIG.for_robot_type(0) == CONFIG and CONFIG.for_robot_type(4) == CONFIG
+    # 0.37 m beyond the spot: type 0 walks in one cycle to 3.7 cm beyond it (its loose window); type 3's one cycle
+    # ends 6.4 cm beyond it, outside its own, and two 4 cm short: it steps back first.
+    assert plan(CONFIG, (0.118 + 0.37, 0.0), 0.0, SPOTS, ALL, 0, 0, 0, True)[1].kind == "walk_in"
+    assert plan(type3, (0.118 + 0.385, 0.0), 0.0, SPOTS, ALL, 0, 0, 0, True)[1].motion == "kick_step_backward"
 
 
 # ---- the kick's ball direction (KickConfig.aim_ball_direction) -------------------------------------------------

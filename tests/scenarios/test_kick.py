@@ -5,12 +5,15 @@ from its spot."""
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import pytest
 
 from agent.motion import MotionLibrary, default_library
 from agent.skills.kick import KickConfig, KickToward
 from motion_studio.kick_rollout import Placement, ball_spot, run_kick
+from motion_studio.realserver.cases import CASES, MotionSource
+from motion_studio.realserver.skill_runs import run_sim
 from motion_studio.skill_bench.kick import _skill_scenario, challenge_attempt, skill_run
 
 LIMIT_S = 12.0
@@ -162,11 +165,6 @@ def test_the_kick_off_line_up_kicks_from_the_whole_range_of_the_beam(distance_cm
     With the loose window reaching 8 cm the real kick grazed the ball from 45 and 55 cm (9 of 18 starts, heading
     -8/0/+8 deg; 0.02-0.10 m) and ours kicked it 0.5-0.7 m from 3 of 18 (47 cm, and 55 cm turned 8 deg right, among
     them)."""
-    from dataclasses import replace
-
-    from motion_studio.realserver.cases import CASES, MotionSource
-    from motion_studio.realserver.skill_runs import run_sim
-
     case = replace(CASES["kick_lineup_50cm"], ball_m=(-8.0 + distance_cm / 100.0, 0.0), heading_deg=heading_deg)
     run = run_sim(case, MotionSource())
     truths = [t for t in run.truths if t is not None]
@@ -194,3 +192,17 @@ def test_kick_toward_aiming_with_the_ball_direction_sends_the_ball_along_the_aim
         directions[aim_with_direction] = math.degrees(math.atan2(rest[1] - ball[1], rest[0] - ball[0]))
     assert abs(directions[False]) > 6.0, directions
     assert abs(directions[True]) < 4.0, directions
+
+
+@pytest.mark.parametrize("distance_cm", [45, 55])
+def test_a_type_3_kick_off_taker_lines_up_and_kicks(distance_cm):
+    """The kick-off taker's line-up (``motion-studio real skills kick_lineup_<d>cm --type 3``) played by robot type 3:
+    planned with type 0's walk-in distances and windows, its walk-ins ended beyond its short kick window and it
+    grazed the ball (0.15-0.16 m on ours, 0.09 m on the real server); with its own (``KICK_CONFIG_BY_TYPE``) it
+    kicks 5.5-6 m on ours and 5.4-5.5 m on the real server, without falling."""
+    case = CASES[f"kick_lineup_{distance_cm}cm"]
+    run = run_sim(replace(case, robot_type=3), MotionSource())
+    truths = [truth for truth in run.truths if truth is not None]
+    moved = math.hypot(truths[-1].ball_m[0] - case.ball_m[0], truths[-1].ball_m[1] - case.ball_m[1])
+    assert moved >= 3.0, [name for _, name in run.completions]
+    assert not any(truth.fallen for truth in truths)
