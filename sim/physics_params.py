@@ -38,8 +38,16 @@ sessions), benchmarks/bench_sim.py.
   and a second difference shows: the same strike pokes the ball (the foot meets it at 0.87-0.89 m/s, the ball
   moves 0.1-0.7 m) with the ball at +2 cm on the real server and at -0.5..+0.5 cm on ours, and where both kick
   it the real foot lofts it (0.5 m up) while ours drives it flat: the foot's path relative to the ball differs
-  by 1.5-2 cm along the kick line on ours, and passes higher on the ball (kick_check from -3 to +4 cm; not
-  traced further).
+  by 1.5-2 cm along the kick line on ours, and passes higher on the ball (kick_check from -3 to +4 cm). Traced
+  2026-11-30 (``motion-studio real joint-slack kick_strong --ours`` with that file authored, both monitors, the
+  ball on its spot): the joint angles agree within 1 deg through the strike and the joints give alike (foot
+  40.7 / 37.6 mm at most), but the support foot does not: from the swing's start to the strike (4 cycles) it
+  slides back 0.9 cm on the real server and 4.2 cm on ours, the torso pitches 17.2 / 12.5 deg forward, and the
+  kicking foot is 2.8 cm short of the real one at the cycle before contact (4.1 / 6.9 cm behind the ball's
+  centre). With ``foot_slip_m_s_per_n`` (``sim/physics_candidates/foot_slip.toml``, below) the support foot
+  slides 0.8 cm and rises on its toes as the real one to the millimetre (z 13.3-39.5 mm over those cycles, real
+  13.7-39.5), the kicking foot is 1.1 cm short, and ours' poke moves from 0 to +1 cm (6.3-6.6 m from -0.5 to
+  +0.5 cm; real +2 cm): the Coulomb feet are most of this disagreement.
 * **Contacts.** μ = ∞ in SimSpark (slip only through force-dependent slip and soft ERP/CFM, friction even at
   zero normal force inside ODE's 1 mm surface layer: the real FRP shows 24 N sideways with 0 N normal on a
   lifting foot); here Coulomb μ = 2 at the feet (0.95 on the other body parts, below), condim 3,
