@@ -6,8 +6,10 @@ from both sides since 2026-11-26 (their own stand-ups, ``motions/authoring/stand
 2026-11-27, kick from their own spot (``motions/files/robot_types.toml``: the shared kick grazed the ball from type
 0's spot on the real server): type 1 4.2-4.8 m there but it falls after about half of its kicks, type 3 4.8-5.1 m
 without a fall (ours falls after every type-3 kick of the kick bench, not in the real-skills case: a disagreement
-of ours); neither plays the long kick, which both fall with. Their dribble took 40 s (type 1, 2026-11-27) or more
-than 45 s (type 3) for 10 m on the real server. The types cycle by uniform number, so every team size from 3 up is
+of ours); since 2026-11-28 both play long kicks of their own (real 5.8 / 6.1 m on the spot), and since 2026-11-30
+type 3 lines up for its kick with its own walk-in (``agent.skills.kick_lineup.KICK_CONFIG_BY_TYPE``). Their dribble
+keeps them out: 10 m took 40 s (type 1, 2026-11-27) or more than 45 s (type 3) on the real server, and neither
+finished within the 46 s of ``motion-studio real skills dribble`` on 2026-11-30. The types cycle by uniform number, so every team size from 3 up is
 legal (11 players: four of type 0, four of type 2, three of type 4) and the goalkeeper (unum 1) is type 0, the type
 every motion was tuned on.
 """
