@@ -193,12 +193,12 @@ sessions), benchmarks/bench_sim.py.
   ours squirts out sideways at 1.4 m/s (0.22 m/s with rigid joints, ``sim/physics_candidates/rigid_joints.toml``;
   0.72 m/s without the robot rebound, ``ball_robot_restitution`` 0). The right foot then meets it at 2.0-2.1 m/s:
   both balls move 2.0 m/s in the contact cycle, then the real one rolls off at 1.14 m/s, ours at 3.34 m/s (1.89
-  m/s without the rebound). The rebound's restitution of 1.0, fitted on kicks whose foot meets the ball at 2.6-4.6
-  m/s, is far too elastic for a walking foot at 1-2 m/s: the real server's walking touch is nearly inelastic. The
-  same excess shows in the slowed kicks (asked for 1 / 2 m: real 0.82 / 1.34 m, ours 1.30 / 1.77 m). Not changed:
-  the fix (a restitution that grows with the approach speed, or a ball-foot contact that holds as SimSpark's
-  unbounded friction does) needs the ball fit redone against every ball trace, and the dribble and the matches
-  were tuned on this touch.
+  m/s without the rebound): the real walking touch is nearly inelastic. The rebound alone is not it: a restitution
+  growing from 0 at 2.0 m/s of approach to 1.0 at 2.8 m/s (scratch, not kept) made the recorded replays agree less
+  (``motion-studio calibrate --details``: the kick traces 0.59 -> 0.78, the ball 1.2 -> 1.78 m apart; the recorded
+  push ``dribble_push_simcmds`` 0.74 -> 0.81) and left the slowed kicks as they were (asked for 1 / 2 m: real 0.82 /
+  1.34 m, ours 1.30 / 1.77 m, with the rebound or without). Next: a ball-foot contact that holds as SimSpark's
+  unbounded friction does, fitted on every ball trace (the dribble and the matches were tuned on this touch).
   Also different before the joint drift below (measured 2026-11-27, ``python -m motion_studio.realserver.kick_check
   kick --offsets-cm=0,0.5,0.8,1,1.5``): the shipped kick from 0.5-1.0 cm beyond its spot went 1.65-1.86 m here and
   3.93-4.05 m on the real server: up to the swing the two robots agreed to a tenth of a degree per joint, but at the
