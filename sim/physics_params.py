@@ -197,8 +197,12 @@ sessions), benchmarks/bench_sim.py.
   growing from 0 at 2.0 m/s of approach to 1.0 at 2.8 m/s (scratch, not kept) made the recorded replays agree less
   (``motion-studio calibrate --details``: the kick traces 0.59 -> 0.78, the ball 1.2 -> 1.78 m apart; the recorded
   push ``dribble_push_simcmds`` 0.74 -> 0.81) and left the slowed kicks as they were (asked for 1 / 2 m: real 0.82 /
-  1.34 m, ours 1.30 / 1.77 m, with the rebound or without). Next: a ball-foot contact that holds as SimSpark's
-  unbounded friction does, fitted on every ball trace (the dribble and the matches were tuned on this touch).
+  1.34 m, ours 1.30 / 1.77 m, with the rebound or without). A grippier ball (``ball_friction`` 0.6 / 1.5 for 0.268)
+  trades the traces against each other as the fit found (calibrate on the 20 kick, push and ball-beside traces:
+  objective 0.861 -> 0.925 / 1.170; the slowed kicks agree better, kick_1m 0.65 -> 0.23 / 0.28 and kick_2m 0.47 ->
+  0.08 / 0.26, the full kicks less, 0.59 -> 0.84 / 1.44). Next: a ball-foot contact that holds as SimSpark's
+  unbounded friction with force-dependent slip does (not one Coulomb mu), fitted on every ball trace; the dribble
+  and the matches were tuned on this touch.
   Also different before the joint drift below (measured 2026-11-27, ``python -m motion_studio.realserver.kick_check
   kick --offsets-cm=0,0.5,0.8,1,1.5``): the shipped kick from 0.5-1.0 cm beyond its spot went 1.65-1.86 m here and
   3.93-4.05 m on the real server: up to the swing the two robots agreed to a tenth of a degree per joint, but at the
