@@ -103,9 +103,8 @@ class KickToward(Skill):
         self.distance_m = distance_m
         self.strong = strong and distance_m is None
         self._base_config = config or KickConfig()
-        self.config = self._fallback_config = self._base_config
         self._robot_type: int | None = None
-        self._configure(0)
+        self._configure(0)  # sets config and _fallback_config; the first step configures the world's robot type
         reach = f" {distance_m:.1f} m" if distance_m is not None else ""
         self.name = f"kick{' strong' if self.strong else ''}{reach} toward ({target_x_m:.1f}, {target_y_m:.1f})"
         self.reset()
